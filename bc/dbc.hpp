@@ -1,0 +1,74 @@
+// Dynamic boundary conditions (Crespo et al. 2007): wall particles carry density and pressure
+// from the continuity equation and EoS like fluid, but keep prescribed positions. The time
+// loop applies the density floor (solver/simulation.cpp); this file sets initial densities.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "solver/cell_grid.hpp"
+#include "solver/particle_set.hpp"
+#include "solver/physics_terms.hpp"
+#include "solver/solver_params.hpp"
+
+namespace swell {
+
+// Free-surface level of each fluid body along "up" (-g): the top particle plus dp/2.
+template <int D>
+std::map<std::uint16_t, double> fluid_levels(const ParticleSet<D>& ps, const Vec<D>& up, double dp) {
+  std::map<std::uint16_t, double> level;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.kind[i] != Kind::Fluid) continue;
+    const double z = ps.pos[i].dot(up) + 0.5 * dp;
+    auto [it, fresh] = level.emplace(ps.body[i], z);
+    if (!fresh) it->second = std::max(it->second, z);
+  }
+  return level;
+}
+
+// Hydrostatic initial density, so a tank at rest starts at rest: a fluid particle at depth d
+// below its body's free surface gets rho = rho0 (1 + rho0 g d / B)^(1/gamma). A wall particle
+// within the kernel support of fluid gets the density of that depth too (else the first steps
+// would compress the fluid against walls at rho0); other wall particles get rho0.
+// Reorders the particles (cell sort); ids are kept.
+template <int D>
+void initialise_hydrostatic(ParticleSet<D>& ps, const SolverParams& prm) {
+  const TaitEos eos(prm.rho0, prm.c0, prm.gamma);
+  const Vec<D> g = prm.gravity.template head<D>();
+  const double gnorm = g.norm();
+  for (std::size_t i = 0; i < ps.size(); ++i) ps.rho[i] = prm.rho0;
+  if (gnorm > 0.0) {
+    const Vec<D> up = -g / gnorm;
+    const auto level = fluid_levels(ps, up, prm.dp);
+    const double support = kernel_support_factor(prm.kernel) * prm.h;
+    Vec<D> lo = ps.pos[0], hi = ps.pos[0];
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      lo = lo.cwiseMin(ps.pos[i]);
+      hi = hi.cwiseMax(ps.pos[i]);
+    }
+    CellGrid<D> grid(lo.array() - support, hi.array() + support, support);
+    grid.sort(ps);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      double top = -std::numeric_limits<double>::infinity();
+      if (ps.kind[i] == Kind::Fluid) {
+        top = level.at(ps.body[i]);
+      } else {
+        grid.for_each_candidate(i, [&](std::uint32_t j) {
+          if (ps.kind[j] == Kind::Fluid && (ps.pos[j] - ps.pos[i]).norm() < support)
+            top = std::max(top, level.at(ps.body[j]));
+        });
+      }
+      const double depth = top - ps.pos[i].dot(up);
+      if (depth > 0.0) ps.rho[i] = eos.hydrostatic_density(gnorm * depth);
+    }
+  }
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    ps.rho0[i] = ps.rho[i];
+    ps.pos0[i] = ps.pos[i];
+    ps.vel0[i] = ps.vel[i];
+  }
+}
+
+}  // namespace swell

@@ -1,0 +1,576 @@
+// Parsing and validation of YAML case files (see io/case_file.hpp and DESIGN.md, "Case file").
+//
+// The reader walks the YAML tree section by section. Each map is first checked against its list
+// of allowed keys, so a misspelt key is an error rather than a silently ignored setting; then
+// each value is converted by a small typed helper that names the key path in its message.
+#include "io/case_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace swell {
+
+namespace {
+
+using Names = std::vector<std::string_view>;
+
+// Shape kinds known to read_shape(); listed in messages.
+const Names kShapeKinds = {"box"};
+
+std::string join(const Names& names) {
+  std::string out;
+  for (const std::string_view name : names) {
+    if (!out.empty()) out += ", ";
+    out += name;
+  }
+  return out;
+}
+
+bool contains(const Names& names, std::string_view name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// Key paths: child("physics", "rho0") == "physics.rho0", item("bodies", 1) == "bodies[1]".
+std::string child(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+std::string item(const std::string& path, std::size_t index) {
+  return path + "[" + std::to_string(index) + "]";
+}
+
+// 1-based line of a node; nodes built by the parser always carry a mark, others count as line 1.
+int line_of(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.is_null() ? 1 : mark.line + 1;
+}
+
+// Quoted scalars ('1.0') carry the tag "!"; only plain scalars are read as numbers or booleans.
+bool is_plain_scalar(const YAML::Node& node) {
+  return node.IsScalar() && node.Tag() != "!";
+}
+
+// Short lists of plain scalars are shown as written, e.g. [0, 0, -9.81].
+std::optional<std::string> short_list(const YAML::Node& node) {
+  if (node.size() > 6) return std::nullopt;
+  std::string out = "[";
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const YAML::Node element = node[i];
+    if (!is_plain_scalar(element)) return std::nullopt;
+    out += (i > 0 ? ", " : "") + element.Scalar();
+  }
+  return out + "]";
+}
+
+// A short description of what a node holds, for "expected X, got Y" messages.
+std::string describe(const YAML::Node& node) {
+  if (is_plain_scalar(node)) return "'" + node.Scalar() + "'";
+  if (node.IsScalar()) return "the quoted string '" + node.Scalar() + "'";
+  if (node.IsSequence()) {
+    if (auto shown = short_list(node)) return *shown;
+    return "a list of " + std::to_string(node.size()) + " items";
+  }
+  if (node.IsMap()) return "a map with " + std::to_string(node.size()) + " keys";
+  return "an empty value";
+}
+
+class CaseReader {
+ public:
+  explicit CaseReader(std::string file) : file_(std::move(file)) {}
+
+  CaseSpec read(const YAML::Node& root);
+
+ private:
+  // --- errors ---
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const {
+    throw CaseError(file_, line_of(at), message);
+  }
+  void expect(bool ok, const YAML::Node& at, const std::string& path,
+              const std::string& expected) const {
+    if (!ok) fail(at, path + ": expected " + expected + ", got " + describe(at));
+  }
+
+  // --- maps and keys ---
+  void check_keys(const YAML::Node& map, const std::string& path, const Names& allowed,
+                  const std::string& context = "") const;
+  void expect_map(const YAML::Node& node, const std::string& path, const Names& allowed) const {
+    expect(node.IsMap(), node, path, "a map with keys " + join(allowed));
+    check_keys(node, path, allowed);
+  }
+  static std::optional<YAML::Node> find(const YAML::Node& map, std::string_view key) {
+    const YAML::Node value = map[std::string(key)];
+    if (!value.IsDefined()) return std::nullopt;
+    return value;
+  }
+  YAML::Node require(const YAML::Node& map, const std::string& path, std::string_view key) const {
+    std::optional<YAML::Node> value = find(map, key);
+    if (!value) fail(map, "missing required key '" + child(path, key) + "'");
+    return *value;
+  }
+
+  // --- typed values ---
+  double number(const YAML::Node& node, const std::string& path) const;
+  int integer(const YAML::Node& node, const std::string& path) const;
+  bool boolean(const YAML::Node& node, const std::string& path) const;
+  std::string text(const YAML::Node& node, const std::string& path) const;
+  std::string name(const YAML::Node& node, const std::string& path) const;
+  std::string choice(const YAML::Node& node, const std::string& path, const Names& allowed) const;
+  std::vector<double> numbers(const YAML::Node& node, const std::string& path,
+                              std::size_t count) const;
+  Eigen::Vector3d vector(const YAML::Node& node, const std::string& path) const;
+  // A number that must satisfy `ok`; `expected` describes the condition ("a number > 0").
+  template <class Predicate>
+  double number_if(const YAML::Node& node, const std::string& path, Predicate ok,
+                   const std::string& expected) const {
+    const double value = number(node, path);
+    expect(ok(value), node, path, expected);
+    return value;
+  }
+
+  // --- sections ---
+  void read_physics(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_viscosity(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_diffusion(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_density_bounds(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_time(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_domain(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_output(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  std::vector<BodySpec> read_bodies(const YAML::Node& node, const std::string& path) const;
+  BodySpec read_body(const YAML::Node& node, const std::string& path) const;
+  void read_wall_options(const YAML::Node& node, const std::string& path, BodySpec& body) const;
+  ShapeSpec read_shape(const YAML::Node& node, const std::string& path) const;
+  ShapeSpec read_box(const YAML::Node& node, const std::string& path) const;
+  std::vector<std::string> read_open_faces(const YAML::Node& node, const std::string& path) const;
+  // Checks min < max on every axis; `max_node` is where a failure is reported.
+  void check_ordered(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
+                     const YAML::Node& min_node, const YAML::Node& max_node,
+                     const std::string& path) const;
+
+  std::string file_;
+  int dim_ = 2;  // set from the top-level `dim` before anything dimension-dependent
+};
+
+// ---------------------------------------------------------------------------------------------
+// Maps and typed values
+
+void CaseReader::check_keys(const YAML::Node& map, const std::string& path, const Names& allowed,
+                            const std::string& context) const {
+  const std::string where = path.empty() ? "" : " in " + path + context;
+  std::set<std::string> seen;
+  for (const auto& entry : map) {
+    const YAML::Node& key = entry.first;
+    if (!key.IsScalar()) fail(key, "keys" + where + " must be plain names, got " + describe(key));
+    const std::string& k = key.Scalar();
+    if (!contains(allowed, k)) {
+      fail(key,
+           "unknown key '" + child(path, k) + "'; allowed keys" + where + ": " + join(allowed));
+    }
+    if (!seen.insert(k).second) fail(key, "duplicate key '" + child(path, k) + "'");
+  }
+}
+
+double CaseReader::number(const YAML::Node& node, const std::string& path) const {
+  double value = 0.0;
+  const bool ok =
+      is_plain_scalar(node) && YAML::convert<double>::decode(node, value) && std::isfinite(value);
+  expect(ok, node, path, "a number");
+  return value;
+}
+
+int CaseReader::integer(const YAML::Node& node, const std::string& path) const {
+  int value = 0;
+  const bool ok = is_plain_scalar(node) && YAML::convert<int>::decode(node, value);
+  expect(ok, node, path, "an integer");
+  return value;
+}
+
+bool CaseReader::boolean(const YAML::Node& node, const std::string& path) const {
+  bool value = false;
+  const bool ok = is_plain_scalar(node) && YAML::convert<bool>::decode(node, value);
+  expect(ok, node, path, "true or false");
+  return value;
+}
+
+std::string CaseReader::text(const YAML::Node& node, const std::string& path) const {
+  expect(node.IsScalar(), node, path, "a string");
+  return node.Scalar();
+}
+
+std::string CaseReader::name(const YAML::Node& node, const std::string& path) const {
+  const std::string value = text(node, path);
+  const bool blank = value.find_first_not_of(" \t") == std::string::npos;
+  expect(!blank, node, path, "a non-empty name");
+  return value;
+}
+
+std::string CaseReader::choice(const YAML::Node& node, const std::string& path,
+                               const Names& allowed) const {
+  const std::string value = text(node, path);
+  if (!contains(allowed, value)) {
+    fail(node, path + ": unknown value '" + value + "'; expected one of: " + join(allowed));
+  }
+  return value;
+}
+
+std::vector<double> CaseReader::numbers(const YAML::Node& node, const std::string& path,
+                                        std::size_t count) const {
+  const std::string expected = "a list of " + std::to_string(count) + " numbers";
+  expect(node.IsSequence() && node.size() == count, node, path, expected);
+  std::vector<double> values;
+  for (std::size_t i = 0; i < count; ++i) {
+    const YAML::Node element = node[i];
+    double value = 0.0;
+    if (!is_plain_scalar(element) || !YAML::convert<double>::decode(element, value) ||
+        !std::isfinite(value)) {
+      fail(element, path + ": expected " + expected + ", but item " + std::to_string(i) + " is " +
+                        describe(element));
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
+Eigen::Vector3d CaseReader::vector(const YAML::Node& node, const std::string& path) const {
+  const std::vector<double> values = numbers(node, path, static_cast<std::size_t>(dim_));
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();  // z stays 0 in 2D
+  for (int d = 0; d < dim_; ++d) v[d] = values[static_cast<std::size_t>(d)];
+  return v;
+}
+
+void CaseReader::check_ordered(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
+                               const YAML::Node& min_node, const YAML::Node& max_node,
+                               const std::string& path) const {
+  static const char* const kAxes[] = {"x", "y", "z"};
+  for (int d = 0; d < dim_; ++d) {
+    if (min[d] < max[d]) continue;
+    const auto i = static_cast<std::size_t>(d);
+    fail(max_node, path + ": expected min < max on every axis, but on " + kAxes[d] +
+                       " min = " + min_node[i].Scalar() + " and max = " + max_node[i].Scalar());
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sections
+
+CaseSpec CaseReader::read(const YAML::Node& root) {
+  const Names top_keys = {"name", "dim", "dp", "physics", "time", "domain", "bodies", "output"};
+  expect(root.IsMap(), root, "case file", "a map with keys " + join(top_keys));
+  check_keys(root, "", top_keys);
+
+  CaseSpec spec;
+  const YAML::Node dim_node = require(root, "", "dim");
+  spec.dim = integer(dim_node, "dim");
+  expect(spec.dim == 2 || spec.dim == 3, dim_node, "dim", "2 or 3");
+  dim_ = spec.dim;
+  if (spec.dim == 3) spec.gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+
+  spec.dp = number_if(
+      require(root, "", "dp"), "dp", [](double v) { return v > 0.0; }, "a number > 0");
+  if (auto node = find(root, "name")) spec.name = name(*node, "name");
+  if (auto node = find(root, "physics")) read_physics(*node, "physics", spec);
+  read_time(require(root, "", "time"), "time", spec);
+  if (auto node = find(root, "domain")) read_domain(*node, "domain", spec);
+  spec.bodies = read_bodies(require(root, "", "bodies"), "bodies");
+  if (auto node = find(root, "output")) read_output(*node, "output", spec);
+  return spec;
+}
+
+void CaseReader::read_physics(const YAML::Node& node, const std::string& path,
+                              CaseSpec& spec) const {
+  expect_map(node, path,
+             {"rho0", "gravity", "coefsound", "coefh", "hswl", "kernel", "viscosity",
+              "density_diffusion", "density_bounds"});
+  const auto positive = [](double v) { return v > 0.0; };
+  if (auto v = find(node, "rho0")) {
+    spec.rho0 = number_if(*v, child(path, "rho0"), positive, "a number > 0");
+  }
+  if (auto v = find(node, "gravity")) spec.gravity = vector(*v, child(path, "gravity"));
+  if (auto v = find(node, "coefsound")) {
+    spec.coefsound = number_if(*v, child(path, "coefsound"), positive, "a number > 0");
+  }
+  if (auto v = find(node, "coefh")) {
+    spec.coefh = number_if(*v, child(path, "coefh"), positive, "a number > 0");
+  }
+  if (auto v = find(node, "hswl")) {
+    spec.hswl = number_if(*v, child(path, "hswl"), positive, "a number > 0");
+  }
+  if (auto v = find(node, "kernel")) {
+    spec.kernel = choice(*v, child(path, "kernel"), {"wendland", "cubic", "quintic", "gaussian"});
+  }
+  if (auto v = find(node, "viscosity")) read_viscosity(*v, child(path, "viscosity"), spec);
+  if (auto v = find(node, "density_diffusion")) {
+    read_diffusion(*v, child(path, "density_diffusion"), spec);
+  }
+  if (auto v = find(node, "density_bounds")) {
+    read_density_bounds(*v, child(path, "density_bounds"), spec);
+  }
+}
+
+// The allowed keys depend on the model: `alpha` belongs to artificial viscosity, `nu` to laminar.
+void CaseReader::read_viscosity(const YAML::Node& node, const std::string& path,
+                                CaseSpec& spec) const {
+  expect(node.IsMap(), node, path, "a map such as {model: artificial, alpha: 0.01}");
+  if (auto v = find(node, "model")) {
+    spec.viscosity_model = choice(*v, child(path, "model"), {"artificial", "laminar"});
+  }
+  const auto non_negative = [](double v) { return v >= 0.0; };
+  if (spec.viscosity_model == "artificial") {
+    check_keys(node, path, {"model", "alpha"}, " for model artificial");
+    if (auto v = find(node, "alpha")) {
+      spec.alpha = number_if(*v, child(path, "alpha"), non_negative, "a number >= 0");
+    }
+  } else {
+    check_keys(node, path, {"model", "nu"}, " for model laminar");
+    if (auto v = find(node, "nu")) {
+      spec.nu = number_if(*v, child(path, "nu"), non_negative, "a number >= 0");
+    }
+  }
+}
+
+void CaseReader::read_diffusion(const YAML::Node& node, const std::string& path,
+                                CaseSpec& spec) const {
+  expect(node.IsMap(), node, path, "a map such as {model: fourtakas, delta: 0.1}");
+  if (auto v = find(node, "model")) {
+    spec.diffusion_model = choice(*v, child(path, "model"), {"fourtakas", "molteni", "none"});
+  }
+  if (spec.diffusion_model == "none") {
+    check_keys(node, path, {"model"}, " for model none");
+    return;
+  }
+  check_keys(node, path, {"model", "delta"}, " for model " + spec.diffusion_model);
+  if (auto v = find(node, "delta")) {
+    spec.delta = number_if(
+        *v, child(path, "delta"), [](double d) { return d >= 0.0; }, "a number >= 0");
+  }
+}
+
+void CaseReader::read_density_bounds(const YAML::Node& node, const std::string& path,
+                                     CaseSpec& spec) const {
+  const std::vector<double> bounds = numbers(node, path, 2);
+  const bool ok = bounds[0] > 0.0 && bounds[0] <= 1.0 && bounds[1] >= 1.0 && bounds[0] < bounds[1];
+  expect(ok, node, path, "[min, max] factors of rho0 with 0 < min <= 1 <= max and min < max");
+  spec.rho_min_factor = bounds[0];
+  spec.rho_max_factor = bounds[1];
+}
+
+void CaseReader::read_time(const YAML::Node& node, const std::string& path, CaseSpec& spec) const {
+  expect_map(node, path, {"end", "cfl", "integrator", "verlet_steps"});
+  spec.t_end = number_if(
+      require(node, path, "end"), child(path, "end"), [](double v) { return v > 0.0; },
+      "a number > 0");
+  if (auto v = find(node, "cfl")) {
+    spec.cfl = number_if(
+        *v, child(path, "cfl"), [](double c) { return c > 0.0 && c <= 1.0; }, "a number in (0, 1]");
+  }
+  if (auto v = find(node, "integrator")) {
+    spec.integrator = choice(*v, child(path, "integrator"), {"symplectic", "verlet"});
+  }
+  if (auto v = find(node, "verlet_steps")) {
+    spec.verlet_steps = integer(*v, child(path, "verlet_steps"));
+    expect(spec.verlet_steps >= 1, *v, child(path, "verlet_steps"), "an integer >= 1");
+  }
+}
+
+void CaseReader::read_domain(const YAML::Node& node, const std::string& path,
+                             CaseSpec& spec) const {
+  expect_map(node, path, {"min", "max"});
+  const YAML::Node min_node = require(node, path, "min");
+  const YAML::Node max_node = require(node, path, "max");
+  const Eigen::Vector3d min = vector(min_node, child(path, "min"));
+  const Eigen::Vector3d max = vector(max_node, child(path, "max"));
+  check_ordered(min, max, min_node, max_node, path);
+  spec.domain_min = min;
+  spec.domain_max = max;
+}
+
+void CaseReader::read_output(const YAML::Node& node, const std::string& path,
+                             CaseSpec& spec) const {
+  expect_map(node, path, {"every", "vtk"});
+  if (auto v = find(node, "every")) {
+    spec.output_every = number_if(
+        *v, child(path, "every"), [](double e) { return e >= 0.0; }, "a number >= 0");
+  }
+  if (auto v = find(node, "vtk")) spec.vtk = boolean(*v, child(path, "vtk"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bodies
+
+std::vector<BodySpec> CaseReader::read_bodies(const YAML::Node& node,
+                                              const std::string& path) const {
+  expect(node.IsSequence() && node.size() > 0, node, path, "a non-empty list of bodies");
+  std::vector<BodySpec> bodies;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const YAML::Node body_node = node[i];
+    BodySpec body = read_body(body_node, item(path, i));
+    for (const BodySpec& other : bodies) {
+      if (other.name != body.name) continue;
+      fail(body_node["name"], item(path, i) + ".name: duplicate body name '" + body.name +
+                                  "' (first used on line " + std::to_string(other.line) + ")");
+    }
+    bodies.push_back(std::move(body));
+  }
+  const bool has_fluid = std::any_of(bodies.begin(), bodies.end(), [](const BodySpec& b) {
+    return b.kind == BodySpec::Kind::Fluid;
+  });
+  if (!has_fluid) fail(node, path + ": no fluid body; at least one body needs 'kind: fluid'");
+  return bodies;
+}
+
+BodySpec CaseReader::read_body(const YAML::Node& node, const std::string& path) const {
+  expect_map(node, path, {"name", "kind", "shape", "walls", "layers", "open"});
+  BodySpec body;
+  body.line = line_of(node);
+  body.name = name(require(node, path, "name"), child(path, "name"));
+  const std::string kind =
+      choice(require(node, path, "kind"), child(path, "kind"), {"fluid", "boundary"});
+  body.kind = kind == "fluid" ? BodySpec::Kind::Fluid : BodySpec::Kind::Boundary;
+  body.shape = read_shape(require(node, path, "shape"), child(path, "shape"));
+  read_wall_options(node, path, body);
+  return body;
+}
+
+// walls, layers and open describe wall particles, so only boundary bodies take them.
+void CaseReader::read_wall_options(const YAML::Node& node, const std::string& path,
+                                   BodySpec& body) const {
+  if (body.kind == BodySpec::Kind::Fluid) {
+    for (const std::string_view key : {"walls", "layers", "open"}) {
+      if (auto v = find(node, key)) {
+        fail(*v, child(path, key) + ": only boundary bodies take '" + std::string(key) +
+                     "', but body '" + body.name + "' has kind fluid");
+      }
+    }
+    return;
+  }
+  if (auto v = find(node, "walls")) {
+    const std::string walls = choice(*v, child(path, "walls"), {"inside", "outside"});
+    body.walls = walls == "inside" ? BodySpec::Walls::Inside : BodySpec::Walls::Outside;
+  }
+  if (auto v = find(node, "layers")) {
+    body.layers = integer(*v, child(path, "layers"));
+    expect(body.layers >= 1, *v, child(path, "layers"), "an integer >= 1");
+  }
+  if (auto v = find(node, "open")) body.open = read_open_faces(*v, child(path, "open"));
+}
+
+// A shape is a map with a single key naming its kind. New kinds (cylinder, sphere, stl, ...)
+// are added as a branch here, a reader like read_box, and an entry in kShapeKinds.
+ShapeSpec CaseReader::read_shape(const YAML::Node& node, const std::string& path) const {
+  expect(node.IsMap() && node.size() == 1, node, path,
+         "a map with exactly one shape key (one of: " + join(kShapeKinds) + ")");
+  const auto entry = *node.begin();
+  const YAML::Node& key = entry.first;
+  expect(key.IsScalar(), key, path, "a shape name");
+  const std::string& kind = key.Scalar();
+  if (kind == "box") return read_box(entry.second, child(path, kind));
+  fail(key, "unknown shape '" + child(path, kind) + "'; known shapes: " + join(kShapeKinds));
+}
+
+ShapeSpec CaseReader::read_box(const YAML::Node& node, const std::string& path) const {
+  expect_map(node, path, {"min", "max"});
+  const YAML::Node min_node = require(node, path, "min");
+  const YAML::Node max_node = require(node, path, "max");
+  ShapeSpec shape;
+  shape.type = ShapeSpec::Type::Box;
+  shape.box.min = vector(min_node, child(path, "min"));
+  shape.box.max = vector(max_node, child(path, "max"));
+  check_ordered(shape.box.min, shape.box.max, min_node, max_node, path);
+  return shape;
+}
+
+std::vector<std::string> CaseReader::read_open_faces(const YAML::Node& node,
+                                                     const std::string& path) const {
+  const Names faces = dim_ == 2 ? Names{"xmin", "xmax", "ymin", "ymax"}
+                                : Names{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  expect(node.IsSequence(), node, path, "a list of faces (" + join(faces) + ")");
+  std::vector<std::string> open;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const YAML::Node face_node = node[i];
+    const std::string face_path = item(path, i);
+    const std::string face = text(face_node, face_path);
+    if (dim_ == 2 && (face == "zmin" || face == "zmax")) {
+      fail(face_node, face_path + ": face '" + face + "' does not exist in a 2D case; " +
+                          "expected one of: " + join(faces));
+    }
+    choice(face_node, face_path, faces);
+    if (std::find(open.begin(), open.end(), face) != open.end()) {
+      fail(face_node, face_path + ": face '" + face + "' is listed twice");
+    }
+    open.push_back(face);
+  }
+  return open;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+// Parses the YAML text; a case file holds exactly one document.
+YAML::Node parse_yaml(const std::string& text, const std::string& file) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::ParserException& e) {
+    throw CaseError(file, e.mark.is_null() ? 0 : e.mark.line + 1, "YAML syntax error: " + e.msg);
+  }
+  if (documents.empty()) {
+    throw CaseError(file, 1, "the case file is empty; expected at least dim, dp, time and bodies");
+  }
+  if (documents.size() > 1) {
+    throw CaseError(file, line_of(documents[1]),
+                    "a second YAML document ('---') was found; a case file holds exactly one");
+  }
+  return documents.front();
+}
+
+std::string default_case_name(const std::string& file_label) {
+  const std::string stem = std::filesystem::path(file_label).stem().string();
+  return stem.empty() ? "case" : stem;
+}
+
+}  // namespace
+
+CaseError::CaseError(const std::string& file, int line, const std::string& message)
+    : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
+                         message),
+      file_(file),
+      line_(line),
+      message_(message) {}
+
+CaseSpec parse_case_text(const std::string& text, const std::string& file_label) {
+  const YAML::Node root = parse_yaml(text, file_label);
+  CaseSpec spec;
+  try {
+    spec = CaseReader(file_label).read(root);
+  } catch (const YAML::Exception& e) {
+    // The reader avoids throwing yaml-cpp conversions; this only guards against the unforeseen.
+    throw CaseError(file_label, e.mark.is_null() ? 0 : e.mark.line + 1, e.msg);
+  }
+  spec.file = file_label;
+  spec.text = text;
+  if (spec.name.empty()) spec.name = default_case_name(file_label);
+  return spec;
+}
+
+CaseSpec load_case_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw CaseError(path, 0, "case file not found");
+  if (std::filesystem::is_directory(path, ec)) {
+    throw CaseError(path, 0, "is a directory, not a case file");
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CaseError(path, 0, "cannot open the case file for reading");
+  std::ostringstream content;
+  content << in.rdbuf();
+  if (in.bad()) throw CaseError(path, 0, "error while reading the case file");
+  return parse_case_text(content.str(), path);
+}
+
+}  // namespace swell

@@ -1,0 +1,73 @@
+// The parsed, validated content of a case file. Plain data: io/case_file.cpp fills it from
+// YAML, apps/ turns it into particles (geometry/) and solver parameters (solver/).
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/shapes.hpp"
+
+namespace swell {
+
+struct ShapeSpec {
+  enum class Type { Box };
+  Type type = Type::Box;
+  geometry::Box box;  // for Type::Box (z ignored in 2D)
+};
+
+struct BodySpec {
+  std::string name;
+  enum class Kind { Fluid, Boundary };
+  Kind kind = Kind::Fluid;
+  ShapeSpec shape;
+  // Boundary bodies: which side of the surface the wall particles go on.
+  //   inside  - the fluid is inside the shape (a tank); particles fill `layers` outside it,
+  //   outside - the fluid is outside the shape (a structure); particles fill `layers` inside it.
+  enum class Walls { Inside, Outside };
+  Walls walls = Walls::Inside;
+  int layers = 3;
+  // Faces of a box tank left open (no wall particles): any of xmin, xmax, ymin, ymax, zmin, zmax.
+  std::vector<std::string> open;
+  int line = 0;  // line in the case file, for messages
+};
+
+struct CaseSpec {
+  std::string file;  // path of the case file, for messages
+  std::string text;  // the case file as read, kept for metadata
+  std::string name;
+  int dim = 2;
+  double dp = 0.0;
+
+  // physics
+  double rho0 = 1000.0;
+  Eigen::Vector3d gravity = Eigen::Vector3d(0.0, -9.81, 0.0);  // default: -y in 2D, -z in 3D
+  double coefsound = 20.0;
+  double coefh = 1.0;
+  std::optional<double> hswl;  // still-water height for c0; default: from the fluid particles
+  std::string kernel = "wendland";                  // wendland | cubic | quintic | gaussian
+  std::string viscosity_model = "artificial";       // artificial | laminar
+  double alpha = 0.01;                              // artificial viscosity coefficient
+  double nu = 1.0e-6;                               // kinematic viscosity, laminar model [m^2/s]
+  std::string diffusion_model = "fourtakas";        // fourtakas | molteni | none
+  double delta = 0.1;
+  double rho_min_factor = 0.7, rho_max_factor = 1.3;  // fluid density bounds before exclusion
+
+  // time
+  double t_end = 0.0;
+  double cfl = 0.2;
+  std::string integrator = "symplectic";  // symplectic | verlet
+  int verlet_steps = 40;
+
+  // domain: particles leaving it are excluded. Default: boundary bounding box + margin.
+  std::optional<Eigen::Vector3d> domain_min, domain_max;
+
+  std::vector<BodySpec> bodies;
+
+  // output
+  double output_every = 0.0;  // 0: only the initial and final states
+  bool vtk = true;
+};
+
+}  // namespace swell

@@ -1,0 +1,135 @@
+#include "io/vtk_writer.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkTypeUInt16Array.h>
+#include <vtkTypeUInt32Array.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace swell {
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw std::runtime_error("cannot write " + tmp);
+    f << text;
+    f.flush();
+    if (!f) throw std::runtime_error("error while writing " + tmp);
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
+}
+
+template <int D>
+void write_vtp(const std::string& path, const ParticleSet<D>& ps, const std::vector<double>& pressure,
+               ParticleFilter filter) {
+  std::vector<std::size_t> sel;
+  sel.reserve(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const bool fluid = ps.kind[i] == Kind::Fluid;
+    if (filter == ParticleFilter::All || (filter == ParticleFilter::Fluid) == fluid) sel.push_back(i);
+  }
+  const auto n = static_cast<vtkIdType>(sel.size());
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkFloatArray> vel, rho, press;
+  vel->SetName("velocity");
+  vel->SetNumberOfComponents(3);
+  vel->SetNumberOfTuples(n);
+  rho->SetName("density");
+  rho->SetNumberOfTuples(n);
+  press->SetName("pressure");
+  press->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedCharArray> type;
+  type->SetName("type");  // 0 fluid, 1 boundary
+  type->SetNumberOfTuples(n);
+  vtkNew<vtkTypeUInt16Array> body;
+  body->SetName("body");
+  body->SetNumberOfTuples(n);
+  vtkNew<vtkTypeUInt32Array> id;
+  id->SetName("id");
+  id->SetNumberOfTuples(n);
+  vtkNew<vtkIdTypeArray> conn;
+  conn->SetNumberOfTuples(n);
+
+  for (vtkIdType k = 0; k < n; ++k) {
+    const std::size_t i = sel[static_cast<std::size_t>(k)];
+    double x[3] = {0.0, 0.0, 0.0};
+    float v[3] = {0.0f, 0.0f, 0.0f};
+    for (int d = 0; d < D; ++d) {
+      x[d] = ps.pos[i][d];
+      v[d] = static_cast<float>(ps.vel[i][d]);
+    }
+    points->SetPoint(k, x);
+    vel->SetTypedTuple(k, v);
+    rho->SetValue(k, static_cast<float>(ps.rho[i]));
+    press->SetValue(k, static_cast<float>(pressure[i]));
+    type->SetValue(k, static_cast<unsigned char>(ps.kind[i]));
+    body->SetValue(k, ps.body[i]);
+    id->SetValue(k, ps.id[i]);
+    conn->SetValue(k, k);
+  }
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfTuples(n + 1);
+  for (vtkIdType k = 0; k <= n; ++k) offsets->SetValue(k, k);
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(offsets, conn);
+
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  poly->SetVerts(verts);
+  poly->GetPointData()->AddArray(vel);
+  poly->GetPointData()->AddArray(rho);
+  poly->GetPointData()->AddArray(press);
+  poly->GetPointData()->AddArray(type);
+  poly->GetPointData()->AddArray(body);
+  poly->GetPointData()->AddArray(id);
+
+  const std::string tmp = path + ".tmp";
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetFileName(tmp.c_str());
+  writer->SetInputData(poly);
+  writer->SetDataModeToBinary();
+  if (writer->Write() != 1) throw std::runtime_error("VTK writer failed on " + tmp);
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
+}
+
+void PvdSeries::add(double time, const std::string& file) {
+  entries_.emplace_back(time, file);
+  std::ostringstream s;
+  s << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+    << "  <Collection>\n";
+  s << std::setprecision(12);
+  for (const auto& [t, f] : entries_)
+    s << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << f << "\"/>\n";
+  s << "  </Collection>\n</VTKFile>\n";
+  write_file_atomically(path_, s.str());
+}
+
+template void write_vtp<2>(const std::string&, const ParticleSet<2>&, const std::vector<double>&,
+                           ParticleFilter);
+template void write_vtp<3>(const std::string&, const ParticleSet<3>&, const std::vector<double>&,
+                           ParticleFilter);
+
+}  // namespace swell

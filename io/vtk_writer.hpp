@@ -1,0 +1,38 @@
+// VTK output: one binary PolyData file (.vtp) per snapshot and a .pvd series file that
+// ParaView opens with the simulated time attached to each snapshot.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "solver/particle_set.hpp"
+
+namespace swell {
+
+// Which particles a snapshot file holds.
+enum class ParticleFilter { All, Fluid, Boundary };
+
+// Writes the active particles (position, velocity, density, pressure, type, body, id) to
+// `path` as binary VTK XML PolyData, through a temporary file renamed into place.
+template <int D>
+void write_vtp(const std::string& path, const ParticleSet<D>& ps, const std::vector<double>& pressure,
+               ParticleFilter filter = ParticleFilter::All);
+
+// A .pvd collection, rewritten (atomically) each time a snapshot is added.
+class PvdSeries {
+ public:
+  explicit PvdSeries(std::string path) : path_(std::move(path)) {}
+  // `file` is relative to the .pvd's folder.
+  void add(double time, const std::string& file);
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
+
+// Writes `text` to `path` through `path.tmp` and a rename, so readers never see half a file.
+void write_file_atomically(const std::string& path, const std::string& text);
+
+}  // namespace swell

@@ -1,0 +1,41 @@
+// Run-time parameters of the WCSPH solver. Plain data; filled by apps/ from the case file.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "solver/kernels.hpp"
+
+namespace swell {
+
+enum class ViscosityModel { Artificial, Laminar };
+enum class DiffusionModel { None, MolteniColagrossi, Fourtakas };
+enum class IntegratorType { Symplectic, Verlet };
+
+struct SolverParams {
+  double dp = 0.0;
+  double h = 0.0;  // smoothing length, h = coefh sqrt(D) dp
+  KernelType kernel = KernelType::Wendland;
+  double rho0 = 1000.0;
+  Eigen::Vector3d gravity = Eigen::Vector3d(0.0, -9.81, 0.0);
+  double c0 = 0.0;     // reference speed of sound, c0 = coefsound sqrt(g H)
+  double gamma = 7.0;  // Tait exponent
+  ViscosityModel viscosity = ViscosityModel::Artificial;
+  double alpha = 0.01;  // Monaghan artificial viscosity
+  double nu = 1.0e-6;   // laminar kinematic viscosity [m^2/s]
+  DiffusionModel diffusion = DiffusionModel::Fourtakas;
+  double delta = 0.1;
+  IntegratorType integrator = IntegratorType::Symplectic;
+  int verlet_steps = 40;  // Verlet: one Euler step every verlet_steps steps
+  double cfl = 0.2;
+  // Fluid particles whose density leaves [rho_min, rho_max] * rho0 are excluded (as
+  // DualSPHysics' RhopOut); boundary density never drops below rho0 (DBC).
+  double rho_min_factor = 0.7, rho_max_factor = 1.3;
+  // A step whose dt falls below this fraction of the first dt is taken as a blow-up.
+  double dt_collapse_factor = 1e-3;
+  Eigen::Vector3d domain_min = Eigen::Vector3d::Zero(), domain_max = Eigen::Vector3d::Zero();
+
+  double eta2() const { return 0.01 * h * h; }
+  double tait_b() const { return c0 * c0 * rho0 / gamma; }
+};
+
+}  // namespace swell

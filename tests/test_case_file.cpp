@@ -1,0 +1,556 @@
+// Tests for io/case_file: valid cases parse to the expected values and defaults, and each class
+// of mistake in a case file is reported as "<file>:<line>: ..." naming the offending key.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "io/case_file.hpp"
+
+namespace swell {
+namespace {
+
+const char* const kLabel = "cases/test.yaml";
+
+// Succeeds when parsing `text` throws a CaseError located at `line` of kLabel whose message
+// contains every string in `parts`.
+testing::AssertionResult ThrowsCaseError(const std::string& text, int line,
+                                         const std::vector<std::string>& parts) {
+  try {
+    parse_case_text(text, kLabel);
+  } catch (const CaseError& e) {
+    const std::string what = e.what();
+    const std::string prefix = std::string(kLabel) + ":" + std::to_string(line) + ": ";
+    if (e.line() != line || what.rfind(prefix, 0) != 0) {
+      return testing::AssertionFailure() << "expected line " << line << ", got: " << what;
+    }
+    for (const std::string& part : parts) {
+      if (what.find(part) == std::string::npos) {
+        return testing::AssertionFailure() << "'" << part << "' not in: " << what;
+      }
+    }
+    return testing::AssertionSuccess() << what;
+  }
+  return testing::AssertionFailure() << "no CaseError thrown";
+}
+
+// A minimal valid 2D case; error tests below spell out their whole text so lines are visible.
+const char* const kMinimal2d = R"(dim: 2
+dp: 0.01
+time: {end: 1}
+bodies:
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [1, 1]}}}
+)";
+
+// ---------------------------------------------------------------------------------------------
+// Valid cases
+
+TEST(CaseFile, Parses2dCaseWithAllKeys) {
+  const std::string text = R"(# a comment line
+name: dambreak2d
+dim: 2
+dp: 0.0014
+physics:
+  rho0: 1000
+  gravity: [0, -9.81]
+  coefsound: 20
+  coefh: 1.0
+  hswl: 0.3
+  kernel: cubic
+  viscosity: {model: laminar, nu: 1e-6}
+  density_diffusion: {model: molteni, delta: 0.05}
+  density_bounds: [0.8, 1.2]
+time: {end: 0.5, cfl: 0.25, integrator: verlet, verlet_steps: 30}
+domain: {min: [-0.1, -0.1], max: [0.4, 0.5]}
+bodies:
+  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.3, 0.2]}}, walls: inside, layers: 3, open: [ymax]}
+  - name: water
+    kind: fluid
+    shape: {box: {min: [0, 0], max: [0.057, 0.114]}}
+output: {every: 0.01, vtk: false}
+)";
+  const CaseSpec spec = parse_case_text(text, kLabel);
+  EXPECT_EQ(spec.file, kLabel);
+  EXPECT_EQ(spec.text, text);
+  EXPECT_EQ(spec.name, "dambreak2d");
+  EXPECT_EQ(spec.dim, 2);
+  EXPECT_DOUBLE_EQ(spec.dp, 0.0014);
+  EXPECT_DOUBLE_EQ(spec.rho0, 1000.0);
+  EXPECT_EQ(spec.gravity, Eigen::Vector3d(0.0, -9.81, 0.0));
+  EXPECT_DOUBLE_EQ(spec.coefsound, 20.0);
+  EXPECT_DOUBLE_EQ(spec.coefh, 1.0);
+  ASSERT_TRUE(spec.hswl.has_value());
+  EXPECT_DOUBLE_EQ(*spec.hswl, 0.3);
+  EXPECT_EQ(spec.kernel, "cubic");
+  EXPECT_EQ(spec.viscosity_model, "laminar");
+  EXPECT_DOUBLE_EQ(spec.nu, 1e-6);
+  EXPECT_EQ(spec.diffusion_model, "molteni");
+  EXPECT_DOUBLE_EQ(spec.delta, 0.05);
+  EXPECT_DOUBLE_EQ(spec.rho_min_factor, 0.8);
+  EXPECT_DOUBLE_EQ(spec.rho_max_factor, 1.2);
+  EXPECT_DOUBLE_EQ(spec.t_end, 0.5);
+  EXPECT_DOUBLE_EQ(spec.cfl, 0.25);
+  EXPECT_EQ(spec.integrator, "verlet");
+  EXPECT_EQ(spec.verlet_steps, 30);
+  ASSERT_TRUE(spec.domain_min && spec.domain_max);
+  EXPECT_EQ(*spec.domain_min, Eigen::Vector3d(-0.1, -0.1, 0.0));
+  EXPECT_EQ(*spec.domain_max, Eigen::Vector3d(0.4, 0.5, 0.0));
+  EXPECT_DOUBLE_EQ(spec.output_every, 0.01);
+  EXPECT_FALSE(spec.vtk);
+
+  ASSERT_EQ(spec.bodies.size(), 2u);
+  const BodySpec& tank = spec.bodies[0];
+  EXPECT_EQ(tank.name, "tank");
+  EXPECT_EQ(tank.kind, BodySpec::Kind::Boundary);
+  EXPECT_EQ(tank.shape.type, ShapeSpec::Type::Box);
+  EXPECT_EQ(tank.shape.box.min, Eigen::Vector3d(0.0, 0.0, 0.0));
+  EXPECT_EQ(tank.shape.box.max, Eigen::Vector3d(0.3, 0.2, 0.0));
+  EXPECT_EQ(tank.walls, BodySpec::Walls::Inside);
+  EXPECT_EQ(tank.layers, 3);
+  EXPECT_EQ(tank.open, std::vector<std::string>{"ymax"});
+  EXPECT_EQ(tank.line, 18);
+  const BodySpec& water = spec.bodies[1];
+  EXPECT_EQ(water.name, "water");
+  EXPECT_EQ(water.kind, BodySpec::Kind::Fluid);
+  EXPECT_EQ(water.shape.box.max, Eigen::Vector3d(0.057, 0.114, 0.0));
+  EXPECT_EQ(water.line, 19);
+}
+
+TEST(CaseFile, Parses3dCaseAndAppliesDefaults) {
+  const std::string text = R"(dim: 3
+dp: 0.02
+time: {end: 2}
+bodies:
+  - name: box
+    kind: boundary
+    shape: {box: {min: [0, 0, 0], max: [1, 0.5, 0.6]}}
+    walls: outside
+    open: [zmax, xmin]
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0, 0], max: [0.4, 0.5, 0.3]}}}
+)";
+  const CaseSpec spec = parse_case_text(text, "some/dir/wave_tank.yaml");
+  const CaseSpec defaults;
+  EXPECT_EQ(spec.name, "wave_tank");  // default: file stem
+  EXPECT_EQ(spec.dim, 3);
+  EXPECT_DOUBLE_EQ(spec.dp, 0.02);
+  EXPECT_EQ(spec.gravity, Eigen::Vector3d(0.0, 0.0, -9.81));  // default in 3D: -z
+  EXPECT_DOUBLE_EQ(spec.rho0, defaults.rho0);
+  EXPECT_DOUBLE_EQ(spec.coefsound, defaults.coefsound);
+  EXPECT_DOUBLE_EQ(spec.coefh, defaults.coefh);
+  EXPECT_FALSE(spec.hswl.has_value());
+  EXPECT_EQ(spec.kernel, "wendland");
+  EXPECT_EQ(spec.viscosity_model, "artificial");
+  EXPECT_DOUBLE_EQ(spec.alpha, defaults.alpha);
+  EXPECT_EQ(spec.diffusion_model, "fourtakas");
+  EXPECT_DOUBLE_EQ(spec.delta, defaults.delta);
+  EXPECT_DOUBLE_EQ(spec.rho_min_factor, defaults.rho_min_factor);
+  EXPECT_DOUBLE_EQ(spec.rho_max_factor, defaults.rho_max_factor);
+  EXPECT_DOUBLE_EQ(spec.t_end, 2.0);
+  EXPECT_DOUBLE_EQ(spec.cfl, defaults.cfl);
+  EXPECT_EQ(spec.integrator, "symplectic");
+  EXPECT_EQ(spec.verlet_steps, defaults.verlet_steps);
+  EXPECT_FALSE(spec.domain_min.has_value());
+  EXPECT_FALSE(spec.domain_max.has_value());
+  EXPECT_DOUBLE_EQ(spec.output_every, 0.0);
+  EXPECT_TRUE(spec.vtk);
+
+  ASSERT_EQ(spec.bodies.size(), 2u);
+  EXPECT_EQ(spec.bodies[0].walls, BodySpec::Walls::Outside);
+  EXPECT_EQ(spec.bodies[0].layers, 3);
+  EXPECT_EQ(spec.bodies[0].open, (std::vector<std::string>{"zmax", "xmin"}));
+  EXPECT_EQ(spec.bodies[0].shape.box.max, Eigen::Vector3d(1.0, 0.5, 0.6));
+  EXPECT_EQ(spec.bodies[0].line, 5);
+  EXPECT_EQ(spec.bodies[1].line, 10);
+  EXPECT_TRUE(spec.bodies[1].open.empty());
+}
+
+TEST(CaseFile, ParsesModelVariants) {
+  const std::string text = R"(dim: 2
+dp: 0.01
+physics:
+  gravity: [1, -5]
+  viscosity: {alpha: 0.05}
+  density_diffusion: {model: none}
+time: {end: 1, cfl: 1}
+bodies:
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [1, 1]}}}
+)";
+  const CaseSpec spec = parse_case_text(text, kLabel);
+  EXPECT_EQ(spec.gravity, Eigen::Vector3d(1.0, -5.0, 0.0));
+  EXPECT_EQ(spec.viscosity_model, "artificial");
+  EXPECT_DOUBLE_EQ(spec.alpha, 0.05);
+  EXPECT_EQ(spec.diffusion_model, "none");
+  EXPECT_DOUBLE_EQ(spec.cfl, 1.0);
+  EXPECT_EQ(spec.name, "test");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Files
+
+TEST(CaseFile, LoadsFromFile) {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("swell_case_" + std::to_string(::getpid()) + "_dam.yaml");
+  {
+    std::ofstream out(path);
+    out << kMinimal2d;
+  }
+  const CaseSpec spec = load_case_file(path.string());
+  std::filesystem::remove(path);
+  EXPECT_EQ(spec.file, path.string());
+  EXPECT_EQ(spec.text, kMinimal2d);
+  EXPECT_EQ(spec.name, path.stem().string());
+  EXPECT_EQ(spec.dim, 2);
+  ASSERT_EQ(spec.bodies.size(), 1u);
+  EXPECT_EQ(spec.bodies[0].line, 5);
+}
+
+TEST(CaseFile, MissingFileNamesTheFile) {
+  const std::string path = "/nonexistent/dir/no_such_case.yaml";
+  try {
+    load_case_file(path);
+    FAIL() << "no CaseError thrown";
+  } catch (const CaseError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.line(), 0);
+    EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CaseFile, DirectoryIsNotACaseFile) {
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  EXPECT_THROW(load_case_file(dir), CaseError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// YAML structure
+
+TEST(CaseFileErrors, YamlSyntaxError) {
+  EXPECT_TRUE(
+      ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1\nbodies: []\n", 4, {"YAML syntax error"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\n  dp: 0.01\n", 2, {"YAML syntax error"}));
+}
+
+TEST(CaseFileErrors, EmptyOrNonMapFile) {
+  EXPECT_TRUE(ThrowsCaseError("", 1, {"empty"}));
+  EXPECT_TRUE(ThrowsCaseError("# nothing\n", 1, {"empty"}));
+  EXPECT_TRUE(ThrowsCaseError("- dim\n- dp\n", 1, {"expected a map", "dim, dp"}));
+}
+
+TEST(CaseFileErrors, SecondDocument) {
+  EXPECT_TRUE(ThrowsCaseError(std::string(kMinimal2d) + "---\ndim: 3\n", 7, {"---"}));
+}
+
+TEST(CaseFileErrors, DuplicateKey) {
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1, cfl: 0.2, cfl: 0.3}
+)",
+                              3, {"duplicate key 'time.cfl'"}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Unknown keys
+
+TEST(CaseFileErrors, UnknownTopLevelKey) {
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+gravity: [0, -9.81]
+)",
+                              3, {"unknown key 'gravity'", "allowed keys", "physics", "bodies"}));
+}
+
+TEST(CaseFileErrors, UnknownNestedKeys) {
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+physics:
+  rho0: 1000
+  viscocity: {alpha: 0.1}
+)",
+                              5, {"unknown key 'physics.viscocity'", "viscosity", "kernel"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+physics:
+  viscosity: {model: artificial, nu: 1e-6}
+)",
+                              4, {"physics.viscosity.nu", "model artificial", "model, alpha"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+physics:
+  density_diffusion: {model: none, delta: 0.1}
+)",
+                              4, {"physics.density_diffusion.delta", "allowed keys"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1, dt: 0.001}
+)",
+                              3, {"time.dt", "end, cfl, integrator, verlet_steps"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1}
+bodies:
+  - name: water
+    kind: fluid
+    colour: blue
+)",
+                              7, {"bodies[0].colour", "name, kind, shape, walls, layers, open"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1}
+bodies:
+  - name: water
+    kind: fluid
+    shape:
+      box: {min: [0, 0], max: [1, 1], centre: [0.5, 0.5]}
+)",
+                              8, {"bodies[0].shape.box.centre", "min, max"}));
+  EXPECT_TRUE(ThrowsCaseError(std::string(kMinimal2d) + "output: {every: 0.1, hdf5: true}\n", 6,
+                              {"output.hdf5", "every, vtk"}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Wrong types
+
+TEST(CaseFileErrors, ExpectedANumber) {
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: small\n", 2, {"dp", "expected a number", "'small'"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+physics:
+  rho0: '1000'
+)",
+                              4, {"physics.rho0", "expected a number"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+physics:
+  viscosity:
+    model: artificial
+    alpha: [0.01]
+)",
+                              6, {"physics.viscosity.alpha", "expected a number"}));
+}
+
+TEST(CaseFileErrors, ExpectedAnIntegerOrBoolean) {
+  EXPECT_TRUE(ThrowsCaseError("dim: 2.5\n", 1, {"dim", "expected an integer"}));
+  EXPECT_TRUE(ThrowsCaseError(std::string(kMinimal2d) + "output:\n  vtk: maybe\n", 7,
+                              {"output.vtk", "expected true or false"}));
+}
+
+TEST(CaseFileErrors, VectorLengthFollowsDim) {
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+physics:
+  gravity: [0, 0, -9.81]
+)",
+                              4, {"physics.gravity", "expected a list of 2 numbers"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 3
+dp: 0.01
+time: {end: 1}
+bodies:
+  - name: water
+    kind: fluid
+    shape: {box: {min: [0, 0], max: [1, 1, 1]}}
+)",
+                              7, {"bodies[0].shape.box.min", "expected a list of 3 numbers"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1}
+domain:
+  min: [0, 0]
+  max: [1, up]
+)",
+                              6, {"domain.max", "expected a list of 2 numbers", "'up'"}));
+}
+
+TEST(CaseFileErrors, WrongStructure) {
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\nphysics: 3\n", 3, {"physics", "expected a map"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1}\nbodies: {name: water}\n", 4,
+                              {"bodies", "expected a non-empty list"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1}\nbodies: []\n", 4,
+                              {"bodies", "expected a non-empty list"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1}
+bodies:
+  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1, 1]}}, open: ymax}
+)",
+                              5, {"bodies[0].open", "expected a list of faces"}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Missing required keys
+
+TEST(CaseFileErrors, MissingTopLevelKeys) {
+  EXPECT_TRUE(ThrowsCaseError("dp: 0.01\ntime: {end: 1}\n", 1, {"missing required key 'dim'"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ntime: {end: 1}\n", 1, {"missing required key 'dp'"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\n", 1, {"missing required key 'time'"}));
+  EXPECT_TRUE(
+      ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1}\n", 1, {"missing required key 'bodies'"}));
+}
+
+TEST(CaseFileErrors, MissingTimeEnd) {
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time:
+  cfl: 0.2
+)",
+                              4, {"missing required key 'time.end'"}));
+}
+
+TEST(CaseFileErrors, MissingBodyKeys) {
+  const std::string head = "dim: 2\ndp: 0.01\ntime: {end: 1}\nbodies:\n";
+  EXPECT_TRUE(
+      ThrowsCaseError(head + "  - {kind: fluid, shape: {box: {min: [0, 0], max: [1, 1]}}}\n", 5,
+                      {"missing required key 'bodies[0].name'"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: w, shape: {box: {min: [0, 0], max: [1, 1]}}}\n", 5,
+                              {"missing required key 'bodies[0].kind'"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: w, kind: fluid}\n", 5,
+                              {"missing required key 'bodies[0].shape'"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: w, kind: fluid, shape: {box: {min: [0, 0]}}}\n", 5,
+                              {"missing required key 'bodies[0].shape.box.max'"}));
+}
+
+TEST(CaseFileErrors, DomainNeedsMinAndMax) {
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1}\ndomain: {min: [0, 0]}\n", 4,
+                              {"missing required key 'domain.max'"}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Invalid values
+
+TEST(CaseFileErrors, InvalidDpAndDim) {
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0\n", 2, {"dp", "> 0", "'0'"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: -0.01\n", 2, {"dp", "> 0"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 4\ndp: 0.01\n", 1, {"dim", "2 or 3", "'4'"}));
+}
+
+TEST(CaseFileErrors, InvalidTimeValues) {
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 0}\n", 3, {"time.end", "> 0"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: -1}\n", 3, {"time.end", "> 0"}));
+  EXPECT_TRUE(
+      ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1, cfl: 0}\n", 3, {"time.cfl", "(0, 1]"}));
+  EXPECT_TRUE(
+      ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1, cfl: 1.5}\n", 3, {"time.cfl", "(0, 1]"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1, integrator: euler}\n", 3,
+                              {"time.integrator", "'euler'", "symplectic, verlet"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1, verlet_steps: 0}\n", 3,
+                              {"time.verlet_steps", ">= 1"}));
+}
+
+TEST(CaseFileErrors, InvalidPhysicsValues) {
+  const std::string head = "dim: 2\ndp: 0.01\nphysics:\n";
+  EXPECT_TRUE(ThrowsCaseError(head + "  rho0: 0\n", 4, {"physics.rho0", "> 0"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  rho0: -1000\n", 4, {"physics.rho0", "> 0"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(head + "  kernel: wendlnd\n", 4,
+                      {"physics.kernel", "'wendlnd'", "wendland, cubic, quintic, gaussian"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  viscosity: {model: sps}\n", 4,
+                              {"physics.viscosity.model", "artificial, laminar"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  density_diffusion: {model: antuono}\n", 4,
+                              {"physics.density_diffusion.model", "fourtakas, molteni, none"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  viscosity: {alpha: -0.1}\n", 4,
+                              {"physics.viscosity.alpha", ">= 0"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  coefh: 0\n", 4, {"physics.coefh", "> 0"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(head + "  density_bounds: [1.1, 1.3]\n", 4, {"physics.density_bounds"}));
+}
+
+TEST(CaseFileErrors, InvalidOutputEvery) {
+  EXPECT_TRUE(ThrowsCaseError(std::string(kMinimal2d) + "output: {every: -0.1}\n", 6,
+                              {"output.every", ">= 0"}));
+}
+
+TEST(CaseFileErrors, InvalidBoxAndDomainExtent) {
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1}
+bodies:
+  - name: water
+    kind: fluid
+    shape:
+      box:
+        min: [0, 0.5]
+        max: [1, 0.5]
+)",
+                              10, {"bodies[0].shape.box", "min < max", "on y"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 3
+dp: 0.01
+time: {end: 1}
+domain: {min: [0, 0, 2], max: [1, 1, 1]}
+)",
+                              4, {"domain", "min < max", "on z"}));
+}
+
+TEST(CaseFileErrors, InvalidBodyValues) {
+  const std::string head = "dim: 2\ndp: 0.01\ntime: {end: 1}\nbodies:\n";
+  const std::string box = "shape: {box: {min: [0, 0], max: [1, 1]}}";
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: w, kind: solid, " + box + "}\n", 5,
+                              {"bodies[0].kind", "'solid'", "fluid, boundary"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: '', kind: fluid, " + box + "}\n", 5,
+                              {"bodies[0].name", "non-empty"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: t, kind: boundary, layers: 0, " + box + "}\n", 5,
+                              {"bodies[0].layers", ">= 1"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: t, kind: boundary, walls: around, " + box + "}\n",
+                              5, {"bodies[0].walls", "inside, outside"}));
+}
+
+TEST(CaseFileErrors, ShapeMustBeOneKnownKind) {
+  const std::string head = "dim: 2\ndp: 0.01\ntime: {end: 1}\nbodies:\n";
+  EXPECT_TRUE(
+      ThrowsCaseError(head + "  - name: w\n    kind: fluid\n    shape:\n      sphere: {r: 1}\n", 8,
+                      {"unknown shape 'bodies[0].shape.sphere'", "known shapes: box"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      head + "  - {name: w, kind: fluid, shape: {box: {min: [0, 0], max: [1, 1]}, stl: a.stl}}\n",
+      5, {"bodies[0].shape", "exactly one shape key"}));
+}
+
+TEST(CaseFileErrors, BoundaryOnlyKeysOnFluid) {
+  const std::string head = "dim: 2\ndp: 0.01\ntime: {end: 1}\nbodies:\n";
+  const std::string box = "shape: {box: {min: [0, 0], max: [1, 1]}}";
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: water, kind: fluid, walls: inside, " + box + "}\n",
+                              5, {"bodies[0].walls", "only boundary bodies", "'water'"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: water, kind: fluid, layers: 2, " + box + "}\n", 5,
+                              {"bodies[0].layers", "only boundary bodies"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: water, kind: fluid, open: [ymax], " + box + "}\n",
+                              5, {"bodies[0].open", "only boundary bodies"}));
+}
+
+TEST(CaseFileErrors, InvalidOpenFaces) {
+  const std::string head = "dim: 2\ndp: 0.01\ntime: {end: 1}\nbodies:\n";
+  const std::string box = "shape: {box: {min: [0, 0], max: [1, 1]}}";
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: t, kind: boundary, open: [zmax], " + box + "}\n",
+                              5, {"bodies[0].open[0]", "'zmax'", "2D"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: t, kind: boundary, open: [top], " + box + "}\n", 5,
+                              {"bodies[0].open[0]", "'top'", "xmin, xmax, ymin, ymax"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(head + "  - {name: t, kind: boundary, open: [ymax, ymax], " + box + "}\n", 5,
+                      {"bodies[0].open[1]", "twice"}));
+}
+
+TEST(CaseFileErrors, DuplicateBodyNames) {
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1}
+bodies:
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [1, 1]}}}
+  - name: water
+    kind: fluid
+    shape: {box: {min: [2, 0], max: [3, 1]}}
+)",
+                              6, {"bodies[1].name", "duplicate body name 'water'", "line 5"}));
+}
+
+TEST(CaseFileErrors, NoFluidBody) {
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1}
+bodies:
+  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1, 1]}}}
+)",
+                              5, {"bodies", "no fluid body", "kind: fluid"}));
+}
+
+}  // namespace
+}  // namespace swell
