@@ -97,6 +97,10 @@ class CellGrid {
     for (std::size_t c = 0; c <= num_cells_; ++c)
       for (std::uint32_t i = start_[c]; i < start_[c + 1]; ++i) cell_of_[i] = static_cast<std::uint32_t>(c);
     ps.n_active = start_[num_cells_];
+    // Cells holding fluid: wall cells with no fluid around them can skip the pair loop.
+    has_fluid_.assign(num_cells_, 0);
+    for (std::size_t i = 0; i < ps.n_active; ++i)
+      if (ps.kind[i] == Kind::Fluid) has_fluid_[cell_of_[i]] = 1;
     return result;
   }
 
@@ -109,22 +113,32 @@ class CellGrid {
   // cell c. c must be an interior cell (any cell holding an active particle is).
   template <class Fn>
   void for_each_neighbour_range(std::size_t c, Fn&& fn) const {
-    const std::size_t nx = static_cast<std::size_t>(n_[0]);
+    for_each_neighbour_row(c, [&](std::size_t row) { fn(start_[row - 1], start_[row + 2]); });
+  }
+
+  // Calls fn(row) with the middle cell of each of the 3^(D-1) x-rows around cell c.
+  template <class Fn>
+  void for_each_neighbour_row(std::size_t c, Fn&& fn) const {
+    const long nx = n_[0];
     if constexpr (D == 1) {
-      fn(start_[c - 1], start_[c + 2]);
+      fn(c);
     } else if constexpr (D == 2) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        const std::size_t row = c + dy * static_cast<long>(nx);
-        fn(start_[row - 1], start_[row + 2]);
-      }
+      for (long dy = -1; dy <= 1; ++dy) fn(static_cast<std::size_t>(static_cast<long>(c) + dy * nx));
     } else {
-      const long nxy = static_cast<long>(nx * static_cast<std::size_t>(n_[1]));
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy) {
-          const std::size_t row = c + dz * nxy + dy * static_cast<long>(nx);
-          fn(start_[row - 1], start_[row + 2]);
-        }
+      const long nxy = nx * n_[1];
+      for (long dz = -1; dz <= 1; ++dz)
+        for (long dy = -1; dy <= 1; ++dy)
+          fn(static_cast<std::size_t>(static_cast<long>(c) + dz * nxy + dy * nx));
     }
+  }
+
+  // True if any of the 3^D cells around interior cell c holds a fluid particle.
+  bool fluid_near(std::size_t c) const {
+    bool any = false;
+    for_each_neighbour_row(c, [&](std::size_t row) {
+      any = any || has_fluid_[row - 1] || has_fluid_[row] || has_fluid_[row + 1];
+    });
+    return any;
   }
 
   // Calls fn(j) for every candidate neighbour j of active particle i (including i itself);
@@ -151,6 +165,7 @@ class CellGrid {
   std::array<long, D> n_{};
   std::size_t num_cells_ = 0;
   std::vector<std::uint32_t> start_, cursor_, order_, cell_of_;
+  std::vector<std::uint8_t> has_fluid_;
 };
 
 }  // namespace swell

@@ -79,6 +79,13 @@ void interact(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Kernel& k
   for (long c = 0; c < ncells; ++c) {
     const std::uint32_t cb = grid.begin(c), ce = grid.end(c);
     if (cb == ce) continue;
+    if (!grid.fluid_near(c)) {  // dry wall cell: nothing to gather
+      for (std::uint32_t a = cb; a < ce; ++a) {
+        out.drho[a] = 0.0;
+        out.ace[a] = V::Zero();
+      }
+      continue;
+    }
     std::array<std::pair<std::uint32_t, std::uint32_t>, (D == 3 ? 9 : 3)> ranges;
     int nr = 0;
     grid.for_each_neighbour_range(c, [&](std::uint32_t b, std::uint32_t e) { ranges[nr++] = {b, e}; });

@@ -95,7 +95,7 @@ struct QuinticSpline {
     constexpr double pi = std::numbers::pi;
     if constexpr (D == 1) return 1.0 / (120.0 * h);
     if constexpr (D == 2) return 7.0 / (478.0 * pi * h * h);
-    return 3.0 / (359.0 * pi * h * h * h);
+    return 1.0 / (120.0 * pi * h * h * h);  // the often-quoted 3/(359 pi) is a misprint
   }
   double support() const { return kSupport * h; }
 

@@ -1,0 +1,325 @@
+// CellGrid<D> (solver/cell_grid.hpp) against brute force: after sort() the candidates of every
+// particle, filtered by distance < cell size, are exactly the brute-force neighbours; the sort is
+// a consistent permutation ordered by cell; out-of-domain and non-finite particles are excluded,
+// counted and parked past size(); a second sort is a no-op; probes at arbitrary points agree too.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "solver/cell_grid.hpp"
+#include "solver/particle_set.hpp"
+#include "solver/types.hpp"
+
+namespace swell {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+template <int D>
+Vec<D> filled(double a) {
+  return Vec<D>::Constant(a);
+}
+
+// A box whose sides are not multiples of the cell size, so the last cell row is partial.
+template <int D>
+struct Box {
+  Vec<D> lo, hi;
+  double cell = 0.071;
+  Box() {
+    for (int d = 0; d < D; ++d) {
+      lo[d] = -0.3 + 0.1 * d;
+      hi[d] = 0.85 + 0.13 * d;
+    }
+  }
+};
+
+// Each particle's per-particle data is derived from its id so a wrong permutation shows up.
+template <int D>
+void add_particle(ParticleSet<D>& ps, const std::type_identity_t<Vec<D>>& x) {
+  const double id = static_cast<double>(ps.total());
+  Vec<D> v;
+  for (int d = 0; d < D; ++d) v[d] = id + 0.25 * d;
+  ps.add(x, v, 1000.0 + id, 0.5 * id, ps.total() % 3 == 0 ? Kind::Boundary : Kind::Fluid,
+         static_cast<std::uint16_t>(ps.total() % 7));
+}
+
+// Random particles inside the box: a uniform background, two dense clusters (many particles per
+// cell, exact duplicates included) and particles exactly on the domain faces and corners.
+template <int D>
+void add_inside(ParticleSet<D>& ps, const Box<D>& box, std::mt19937_64& rng, int n_uniform) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto uniform_point = [&] {
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = box.lo[d] + u(rng) * (box.hi[d] - box.lo[d]);
+    return x;
+  };
+  for (int k = 0; k < n_uniform; ++k) add_particle(ps, uniform_point());
+  for (int c = 0; c < 2; ++c) {
+    const Vec<D> centre = c == 0 ? Vec<D>(0.5 * (box.lo + box.hi)) : Vec<D>(box.lo + filled<D>(0.05));
+    for (int k = 0; k < 400; ++k) {
+      Vec<D> x;
+      for (int d = 0; d < D; ++d) x[d] = centre[d] + (u(rng) - 0.5) * 1.5 * box.cell;
+      if (k % 50 == 0 && k > 0) x = ps.pos.back();  // exact duplicate of the previous particle
+      add_particle(ps, x.cwiseMax(box.lo).cwiseMin(box.hi));
+    }
+  }
+  add_particle(ps, box.lo);
+  add_particle(ps, box.hi);
+  for (int k = 0; k < 20; ++k) {  // on a face: one coordinate exactly at lo or hi
+    Vec<D> x = uniform_point();
+    x[k % D] = (k / D) % 2 == 0 ? box.lo[k % D] : box.hi[k % D];
+    add_particle(ps, x);
+  }
+}
+
+// Ids of the active particles within distance r of x, by brute force.
+template <int D>
+std::vector<std::uint32_t> brute_force(const ParticleSet<D>& ps, const Vec<D>& x, double r) {
+  std::vector<std::uint32_t> ids;
+  for (std::size_t j = 0; j < ps.size(); ++j)
+    if ((ps.pos[j] - x).norm() < r) ids.push_back(ps.id[j]);
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+// Same set through the grid; also fails on a candidate outside the active range or one visited
+// twice (the neighbour ranges of one cell must not overlap).
+template <int D, class ForEach>
+std::vector<std::uint32_t> through_grid(const ParticleSet<D>& ps, const Vec<D>& x, double r,
+                                        ForEach&& for_each) {
+  std::vector<std::uint32_t> candidates, ids;
+  for_each([&](std::uint32_t j) { candidates.push_back(j); });
+  for (std::uint32_t j : candidates) {
+    EXPECT_LT(j, ps.size());
+    if (j < ps.size() && (ps.pos[j] - x).norm() < r) ids.push_back(ps.id[j]);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  EXPECT_EQ(std::adjacent_find(candidates.begin(), candidates.end()), candidates.end())
+      << "a candidate was visited twice";
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+// Every particle's data is still the data created with its id.
+template <int D>
+void expect_consistent(const ParticleSet<D>& ps, const std::vector<Vec<D>>& original_pos) {
+  std::vector<std::uint32_t> ids(ps.id.begin(), ps.id.end());
+  std::sort(ids.begin(), ids.end());
+  for (std::size_t k = 0; k < ids.size(); ++k) ASSERT_EQ(ids[k], k) << "ids are not a permutation";
+  for (std::size_t k = 0; k < ps.total(); ++k) {
+    const std::uint32_t id = ps.id[k];
+    const bool same_pos = (ps.pos[k].array() == original_pos[id].array()).all() ||
+                          (ps.pos[k].array().isNaN() && original_pos[id].array().isNaN()).any();
+    EXPECT_TRUE(same_pos) << "slot " << k;
+    EXPECT_EQ(ps.vel[k][0], static_cast<double>(id)) << "slot " << k;
+    EXPECT_EQ(ps.mass[k], 0.5 * id);
+    EXPECT_EQ(ps.body[k], id % 7);
+    EXPECT_EQ(ps.kind[k], id % 3 == 0 ? Kind::Boundary : Kind::Fluid);
+    EXPECT_EQ(ps.id[k], id);
+  }
+}
+
+template <class T>
+class CellGridTest : public ::testing::Test {};
+using Dims = ::testing::Types<std::integral_constant<int, 2>, std::integral_constant<int, 3>>;
+struct DimName {
+  template <class T>
+  static std::string GetName(int) {
+    return std::to_string(T::value) + "D";
+  }
+};
+TYPED_TEST_SUITE(CellGridTest, Dims, DimName);
+
+TYPED_TEST(CellGridTest, NeighboursMatchBruteForce) {
+  constexpr int D = TypeParam::value;
+  const Box<D> box;
+  std::mt19937_64 rng(20240611 + D);
+  ParticleSet<D> ps;
+  add_inside(ps, box, rng, D == 2 ? 3000 : 4000);
+  const std::vector<Vec<D>> original(ps.pos.begin(), ps.pos.end());
+  const std::size_t n = ps.size();
+
+  CellGrid<D> grid(box.lo, box.hi, box.cell);
+  const auto res = grid.sort(ps);
+  EXPECT_EQ(res.out_of_domain, 0u);
+  EXPECT_EQ(res.non_finite, 0u);
+  ASSERT_EQ(ps.size(), n);
+  ASSERT_EQ(ps.total(), n);
+  expect_consistent(ps, original);
+
+  // Ordered by cell, and cell_of / begin / end agree with the positions.
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    EXPECT_EQ(grid.cell_of(i), grid.cell_index(ps.pos[i])) << "i=" << i;
+    if (i > 0) {
+      EXPECT_LE(grid.cell_of(i - 1), grid.cell_of(i)) << "i=" << i;
+    }
+    EXPECT_GE(i, grid.begin(grid.cell_of(i)));
+    EXPECT_LT(i, grid.end(grid.cell_of(i)));
+  }
+
+  std::size_t pairs = 0, max_neigh = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const auto expected = brute_force(ps, ps.pos[i], box.cell);
+    const auto found = through_grid(ps, ps.pos[i], box.cell,
+                                    [&](auto fn) { grid.for_each_candidate(i, fn); });
+    ASSERT_EQ(found, expected) << "particle id " << ps.id[i];
+    pairs += found.size();
+    max_neigh = std::max(max_neigh, found.size());
+  }
+  // Not vacuous: the clusters give cells with many particles and every particle sees itself.
+  EXPECT_GT(pairs, 2 * n);
+  EXPECT_GT(max_neigh, 100u);
+}
+
+TYPED_TEST(CellGridTest, ExcludesOutOfDomainAndNonFinite) {
+  constexpr int D = TypeParam::value;
+  const Box<D> box;
+  std::mt19937_64 rng(77 + D);
+  ParticleSet<D> ps;
+  add_inside(ps, box, rng, 1500);
+  const std::size_t n_in = ps.total();
+  std::vector<std::uint32_t> bad_domain, bad_value;
+  // Out of the domain, on every side and just past the faces.
+  for (int d = 0; d < D; ++d) {
+    Vec<D> x = 0.5 * (box.lo + box.hi);
+    x[d] = std::nextafter(box.hi[d], kInf);
+    bad_domain.push_back(static_cast<std::uint32_t>(ps.total()));
+    add_particle(ps, x);
+    x[d] = box.lo[d] - 3.0;
+    bad_domain.push_back(static_cast<std::uint32_t>(ps.total()));
+    add_particle(ps, x);
+  }
+  // Non-finite position, velocity or density (a NaN position also fails the domain test; it
+  // must be counted once, as non-finite).
+  {
+    Vec<D> x = 0.5 * (box.lo + box.hi);
+    x[D - 1] = kNaN;
+    bad_value.push_back(static_cast<std::uint32_t>(ps.total()));
+    add_particle(ps, x);
+    bad_value.push_back(static_cast<std::uint32_t>(ps.total()));
+    add_particle(ps, 0.5 * (box.lo + box.hi));
+    ps.vel.back()[D - 1] = kInf;  // component 0 keeps the id check
+    bad_value.push_back(static_cast<std::uint32_t>(ps.total()));
+    add_particle(ps, 0.5 * (box.lo + box.hi));
+    ps.rho.back() = kNaN;
+    ps.rho0.back() = kNaN;
+  }
+  // More valid particles after the bad ones, so exclusion really has to move things.
+  add_inside(ps, box, rng, 500);
+  const std::vector<Vec<D>> original(ps.pos.begin(), ps.pos.end());
+  const std::size_t total = ps.total();
+  const std::size_t n_bad = bad_domain.size() + bad_value.size();
+
+  CellGrid<D> grid(box.lo, box.hi, box.cell);
+  const auto res = grid.sort(ps);
+  EXPECT_EQ(res.out_of_domain, bad_domain.size());
+  EXPECT_EQ(res.non_finite, bad_value.size());
+  EXPECT_EQ(ps.size(), total - n_bad);
+  EXPECT_EQ(ps.total(), total);
+  EXPECT_GT(ps.size(), n_in);
+  expect_consistent(ps, original);
+
+  // The excluded particles are exactly the ones past size().
+  std::vector<std::uint32_t> parked(ps.id.begin() + ps.size(), ps.id.end()), bad = bad_domain;
+  bad.insert(bad.end(), bad_value.begin(), bad_value.end());
+  std::sort(parked.begin(), parked.end());
+  std::sort(bad.begin(), bad.end());
+  EXPECT_EQ(parked, bad);
+
+  // Neighbour sets still match brute force (which sees only the active range).
+  for (std::size_t i = 0; i < ps.size(); i += 7) {
+    const auto found = through_grid(ps, ps.pos[i], box.cell,
+                                    [&](auto fn) { grid.for_each_candidate(i, fn); });
+    ASSERT_EQ(found, brute_force(ps, ps.pos[i], box.cell)) << "particle id " << ps.id[i];
+  }
+}
+
+TYPED_TEST(CellGridTest, SecondSortIsNoOpAndResortAfterMotion) {
+  constexpr int D = TypeParam::value;
+  const Box<D> box;
+  std::mt19937_64 rng(99 + D);
+  ParticleSet<D> ps;
+  add_inside(ps, box, rng, 2000);
+  Vec<D> outside = box.hi + filled<D>(1.0);
+  add_particle(ps, outside);
+
+  CellGrid<D> grid(box.lo, box.hi, box.cell);
+  const auto first = grid.sort(ps);
+  EXPECT_EQ(first.out_of_domain, 1u);
+  const std::vector<std::uint32_t> ids_after_first(ps.id.begin(), ps.id.end());
+  const std::size_t active = ps.size();
+
+  // The counting sort is stable, so sorting sorted particles changes nothing; the excluded one
+  // stays parked and is not counted again.
+  const auto second = grid.sort(ps);
+  EXPECT_EQ(second.out_of_domain, 0u);
+  EXPECT_EQ(second.non_finite, 0u);
+  EXPECT_EQ(ps.size(), active);
+  EXPECT_EQ(std::vector<std::uint32_t>(ps.id.begin(), ps.id.end()), ids_after_first);
+
+  // Move every particle by up to one cell (some leave the domain) and sort again.
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    for (int d = 0; d < D; ++d) ps.pos[i][d] += u(rng) * box.cell;
+  std::size_t leaving = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) leaving += grid.inside_domain(ps.pos[i]) ? 0 : 1;
+  ASSERT_GT(leaving, 0u);
+  const auto third = grid.sort(ps);
+  EXPECT_EQ(third.out_of_domain, leaving);
+  EXPECT_EQ(ps.size(), active - leaving);
+  for (std::size_t i = 1; i < ps.size(); ++i) EXPECT_LE(grid.cell_of(i - 1), grid.cell_of(i));
+  for (std::size_t i = 0; i < ps.size(); i += 5) {
+    const auto found = through_grid(ps, ps.pos[i], box.cell,
+                                    [&](auto fn) { grid.for_each_candidate(i, fn); });
+    ASSERT_EQ(found, brute_force(ps, ps.pos[i], box.cell)) << "particle id " << ps.id[i];
+  }
+}
+
+TYPED_TEST(CellGridTest, CandidatesNearArbitraryPoints) {
+  constexpr int D = TypeParam::value;
+  const Box<D> box;
+  std::mt19937_64 rng(4242 + D);
+  ParticleSet<D> ps;
+  add_inside(ps, box, rng, 3000);
+  CellGrid<D> grid(box.lo, box.hi, box.cell);
+  grid.sort(ps);
+
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int probes_with_neighbours = 0;
+  for (int k = 0; k < 2000; ++k) {
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = box.lo[d] + u(rng) * (box.hi[d] - box.lo[d]);
+    if (k < 2 * D) x[k % D] = k < D ? box.lo[k % D] : box.hi[k % D];  // probes on the faces
+    const auto found = through_grid(ps, x, box.cell,
+                                    [&](auto fn) { grid.for_each_candidate_near(x, fn); });
+    const auto expected = brute_force(ps, x, box.cell);
+    ASSERT_EQ(found, expected) << "probe " << k;
+    probes_with_neighbours += expected.empty() ? 0 : 1;
+  }
+  EXPECT_GT(probes_with_neighbours, 1000);
+
+  // Documented behaviour: a point outside the domain (or NaN) gets no candidates at all.
+  for (const Vec<D>& x : {Vec<D>(box.hi + filled<D>(0.01)), Vec<D>(box.lo - filled<D>(0.5)),
+                          filled<D>(kNaN)}) {
+    int calls = 0;
+    grid.for_each_candidate_near(x, [&](std::uint32_t) { ++calls; });
+    EXPECT_EQ(calls, 0);
+  }
+}
+
+TEST(CellGrid, RejectsEmptyDomain) {
+  EXPECT_THROW(CellGrid<2>(Vec<2>(0.0, 0.0), Vec<2>(1.0, 0.0), 0.1), std::invalid_argument);
+  EXPECT_THROW(CellGrid<3>(Vec<3>(0.0, 0.0, 0.0), Vec<3>(1.0, 1.0, kNaN), 0.1),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace swell
