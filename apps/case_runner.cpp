@@ -45,8 +45,10 @@ std::string format_duration(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--";
   const long total = static_cast<long>(s + 0.5);
   std::ostringstream o;
-  if (total >= 3600) o << total / 3600 << ":" << std::setw(2) << std::setfill('0') << (total / 60) % 60;
-  else o << total / 60;
+  if (total >= 3600)
+    o << total / 3600 << ":" << std::setw(2) << std::setfill('0') << (total / 60) % 60;
+  else
+    o << total / 60;
   o << ":" << std::setw(2) << std::setfill('0') << total % 60;
   return o.str();
 }
@@ -104,7 +106,8 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     zmin = std::min(zmin, z);
     zmax = std::max(zmax, z);
   }
-  if (!std::isfinite(zmin)) throw std::invalid_argument(spec.file + ": the case holds no fluid particle");
+  if (!std::isfinite(zmin))
+    throw std::invalid_argument(spec.file + ": the case holds no fluid particle");
   s.floor = zmin - 0.5 * spec.dp;
   s.hswl = spec.hswl ? *spec.hswl : (zmax - zmin + spec.dp);
   p.c0 = spec.coefsound * std::sqrt(std::max(gnorm, 1e-12) * s.hswl);
@@ -119,8 +122,10 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   const Vec<D> margin = (0.1 * (hi - lo)).array() + 2.0 * p.h;
   p.domain_min.setZero();
   p.domain_max.setZero();
-  p.domain_min.template head<D>() = spec.domain_min ? Vec<D>(spec.domain_min->template head<D>()) : Vec<D>(lo - margin);
-  p.domain_max.template head<D>() = spec.domain_max ? Vec<D>(spec.domain_max->template head<D>()) : Vec<D>(hi + margin);
+  p.domain_min.template head<D>() =
+      spec.domain_min ? Vec<D>(spec.domain_min->template head<D>()) : Vec<D>(lo - margin);
+  p.domain_max.template head<D>() =
+      spec.domain_max ? Vec<D>(spec.domain_max->template head<D>()) : Vec<D>(hi + margin);
 
   initialise_hydrostatic(s.particles, p);
   return s;
@@ -163,10 +168,12 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
 
   PvdSeries pvd((fs::path(out_dir) / (spec.name + ".pvd")).string());
   std::ofstream diag(fs::path(out_dir) / "diagnostics.csv");
-  if (!diag) throw std::runtime_error("cannot write " + (fs::path(out_dir) / "diagnostics.csv").string());
+  if (!diag)
+    throw std::runtime_error("cannot write " + (fs::path(out_dir) / "diagnostics.csv").string());
   diag << "# swell diagnostics for case " << spec.name << "; front = largest x of fluid within "
        << band << " m above the floor, plus dp/2\n";
-  diag << "time [s],steps,dt [s],fluid particles,fluid mass [kg],kinetic energy [J],max speed [m/s],front x [m]\n";
+  diag << "time [s],steps,dt [s],fluid particles,fluid mass [kg],kinetic energy [J],max speed "
+          "[m/s],front x [m]\n";
   diag << std::setprecision(9);
 
   auto write_snapshot = [&]() {
@@ -183,8 +190,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   };
   auto write_diag = [&]() {
     const auto tot = fluid_totals(sim.particles());
-    diag << sim.time() << ',' << sim.steps() << ',' << sim.dt() << ',' << tot.count << ',' << tot.mass
-         << ',' << tot.kinetic_energy << ',' << tot.max_speed << ','
+    diag << sim.time() << ',' << sim.steps() << ',' << sim.dt() << ',' << tot.count << ','
+         << tot.mass << ',' << tot.kinetic_energy << ',' << tot.max_speed << ','
          << surge_front(sim.particles(), up, floor, band, dp) << '\n';
   };
 
@@ -216,9 +223,10 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
       const double el = std::chrono::duration<double>(now - loop0).count();
       const double rate = static_cast<double>(loop_steps) * n_total / std::max(el, 1e-9);
       const double eta = el / sim.time() * (t_end - sim.time());
-      std::fprintf(stderr, "%st = %.4f / %.4f s | step %ld | dt %.3e s | %.2f M particle-steps/s | ETA %s%s",
-                   tty ? "\r" : "", sim.time(), t_end, sim.steps(), sim.dt(), rate / 1e6,
-                   format_duration(eta).c_str(), tty ? "   " : "\n");
+      std::fprintf(
+          stderr, "%st = %.4f / %.4f s | step %ld | dt %.3e s | %.2f M particle-steps/s | ETA %s%s",
+          tty ? "\r" : "", sim.time(), t_end, sim.steps(), sim.dt(), rate / 1e6,
+          format_duration(eta).c_str(), tty ? "   " : "\n");
       std::fflush(stderr);
     }
   }
@@ -236,7 +244,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   std::ostringstream s;
   s << std::setprecision(4);
   s << "run summary: " << spec.name << "\n"
-    << "  particles:      " << n_total << " (" << sum.fluid << " fluid, " << sum.boundary << " boundary)\n"
+    << "  particles:      " << n_total << " (" << sum.fluid << " fluid, " << sum.boundary
+    << " boundary)\n"
     << "  simulated time: " << sum.sim_time << " s in " << sum.steps << " steps\n"
     << "  wall time:      " << sum.wall_seconds << " s (time loop " << loop_s << " s, "
     << omp_get_max_threads() << " thread(s))\n"
@@ -245,10 +254,11 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     << "  phases:         neighbours " << sum.phases.neighbour << " s, interaction "
     << sum.phases.interaction << " s, integration " << sum.phases.integration << " s, output "
     << sum.output_seconds << " s\n"
-    << "  excluded:       " << sum.excluded.total() << " (out of domain " << sum.excluded.out_of_domain
-    << ", non-finite " << sum.excluded.non_finite << ", density out of range "
-    << sum.excluded.density_out_of_range << ")\n"
-    << "  output:         " << out_dir << " (" << sum.snapshots << " snapshots, " << pvd.path() << ")\n";
+    << "  excluded:       " << sum.excluded.total() << " (out of domain "
+    << sum.excluded.out_of_domain << ", non-finite " << sum.excluded.non_finite
+    << ", density out of range " << sum.excluded.density_out_of_range << ")\n"
+    << "  output:         " << out_dir << " (" << sum.snapshots << " snapshots, " << pvd.path()
+    << ")\n";
   log << s.str();
   std::ofstream(fs::path(out_dir) / "run_summary.txt") << s.str();
   return sum;

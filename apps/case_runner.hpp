@@ -26,8 +26,8 @@ struct CaseSetup {
   SolverParams params;
   ParticleSet<D> particles;
   std::vector<BodyCount> bodies;
-  double hswl = 0.0;     // still-water height used for c0
-  double floor = 0.0;    // lowest fluid level along "up", for the surge front
+  double hswl = 0.0;   // still-water height used for c0
+  double floor = 0.0;  // lowest fluid level along "up", for the surge front
 };
 
 // Builds the particles (geometry/), hydrostatic densities (bc/) and solver parameters.
@@ -35,10 +35,10 @@ template <int D>
 CaseSetup<D> setup_case(const CaseSpec& spec);
 
 struct RunOptions {
-  std::string out_dir;           // default: out/<case name>
-  int threads = 0;               // 0: OpenMP default
-  bool progress = true;          // progress line on stderr
-  std::ostream* log = nullptr;   // summary stream (stdout if null)
+  std::string out_dir;          // default: out/<case name>
+  int threads = 0;              // 0: OpenMP default
+  bool progress = true;         // progress line on stderr
+  std::ostream* log = nullptr;  // summary stream (stdout if null)
 };
 
 struct RunSummary {

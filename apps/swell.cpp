@@ -1,8 +1,8 @@
 // The `swell` command line. Errors from every layer arrive here as exceptions and leave as
 // one readable message and a non-zero exit code.
-#include <CLI/CLI.hpp>
 #include <omp.h>
 
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
 
@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "run a case file to its end time");
   run->add_option("case", case_path, "case file (YAML)")->required();
   run->add_option("-o,--out", out_dir, "output folder (default: out/<case name>)");
-  run->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  run->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
   run->add_flag("-q,--quiet", quiet, "no progress line");
 
   try {

@@ -17,7 +17,8 @@ namespace swell {
 
 // Free-surface level of each fluid body along "up" (-g): the top particle plus dp/2.
 template <int D>
-std::map<std::uint16_t, double> fluid_levels(const ParticleSet<D>& ps, const Vec<D>& up, double dp) {
+std::map<std::uint16_t, double> fluid_levels(const ParticleSet<D>& ps, const Vec<D>& up,
+                                             double dp) {
   std::map<std::uint16_t, double> level;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.kind[i] != Kind::Fluid) continue;

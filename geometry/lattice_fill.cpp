@@ -58,7 +58,8 @@ void for_lattice_points(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, in
 
 }  // namespace
 
-std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies, const FillOptions& opt) {
+std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
+                                    const FillOptions& opt) {
   if (!(opt.dp > 0.0)) throw std::invalid_argument("fill_bodies: dp must be positive");
   const int dim = opt.dim;
   const double dp = opt.dp, gap = opt.gap_factor * dp;
@@ -84,8 +85,9 @@ std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies, con
       fb.points.push_back(p);
     });
     if (fb.points.empty())
-      throw std::invalid_argument("body '" + b.name + "' holds no particle at dp = " +
-                                  std::to_string(dp) + " (is it thinner than dp, or inside a wall?)");
+      throw std::invalid_argument("body '" + b.name +
+                                  "' holds no particle at dp = " + std::to_string(dp) +
+                                  " (is it thinner than dp, or inside a wall?)");
     out.push_back(std::move(fb));
   }
   return out;

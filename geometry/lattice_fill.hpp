@@ -39,6 +39,7 @@ struct FillOptions {
 
 // Fills every body; fluid bodies lose the points inside walls and points of earlier fluid
 // bodies. Throws std::invalid_argument naming the body if one gets no particle.
-std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies, const FillOptions& opt);
+std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
+                                    const FillOptions& opt);
 
 }  // namespace swell::geometry

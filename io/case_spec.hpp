@@ -45,12 +45,12 @@ struct CaseSpec {
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, -9.81, 0.0);  // default: -y in 2D, -z in 3D
   double coefsound = 20.0;
   double coefh = 1.0;
-  std::optional<double> hswl;  // still-water height for c0; default: from the fluid particles
-  std::string kernel = "wendland";                  // wendland | cubic | quintic | gaussian
-  std::string viscosity_model = "artificial";       // artificial | laminar
-  double alpha = 0.01;                              // artificial viscosity coefficient
-  double nu = 1.0e-6;                               // kinematic viscosity, laminar model [m^2/s]
-  std::string diffusion_model = "fourtakas";        // fourtakas | molteni | none
+  std::optional<double> hswl;       // still-water height for c0; default: from the fluid particles
+  std::string kernel = "wendland";  // wendland | cubic | quintic | gaussian
+  std::string viscosity_model = "artificial";  // artificial | laminar
+  double alpha = 0.01;                         // artificial viscosity coefficient
+  double nu = 1.0e-6;                          // kinematic viscosity, laminar model [m^2/s]
+  std::string diffusion_model = "fourtakas";   // fourtakas | molteni | none
   double delta = 0.1;
   double rho_min_factor = 0.7, rho_max_factor = 1.3;  // fluid density bounds before exclusion
 

@@ -37,13 +37,14 @@ void write_file_atomically(const std::string& path, const std::string& text) {
 }
 
 template <int D>
-void write_vtp(const std::string& path, const ParticleSet<D>& ps, const std::vector<double>& pressure,
-               ParticleFilter filter) {
+void write_vtp(const std::string& path, const ParticleSet<D>& ps,
+               const std::vector<double>& pressure, ParticleFilter filter) {
   std::vector<std::size_t> sel;
   sel.reserve(ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const bool fluid = ps.kind[i] == Kind::Fluid;
-    if (filter == ParticleFilter::All || (filter == ParticleFilter::Fluid) == fluid) sel.push_back(i);
+    if (filter == ParticleFilter::All || (filter == ParticleFilter::Fluid) == fluid)
+      sel.push_back(i);
   }
   const auto n = static_cast<vtkIdType>(sel.size());
 

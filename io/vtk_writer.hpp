@@ -16,8 +16,8 @@ enum class ParticleFilter { All, Fluid, Boundary };
 // Writes the active particles (position, velocity, density, pressure, type, body, id) to
 // `path` as binary VTK XML PolyData, through a temporary file renamed into place.
 template <int D>
-void write_vtp(const std::string& path, const ParticleSet<D>& ps, const std::vector<double>& pressure,
-               ParticleFilter filter = ParticleFilter::All);
+void write_vtp(const std::string& path, const ParticleSet<D>& ps,
+               const std::vector<double>& pressure, ParticleFilter filter = ParticleFilter::All);
 
 // A .pvd collection, rewritten (atomically) each time a snapshot is added.
 class PvdSeries {

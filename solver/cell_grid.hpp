@@ -74,7 +74,8 @@ class CellGrid {
     const auto excluded_cell = static_cast<std::uint32_t>(num_cells_);
     cell_of_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const bool finite = ps.pos[i].allFinite() && ps.vel[i].allFinite() && std::isfinite(ps.rho[i]);
+      const bool finite =
+          ps.pos[i].allFinite() && ps.vel[i].allFinite() && std::isfinite(ps.rho[i]);
       if (!finite) {
         cell_of_[i] = excluded_cell;
         ++result.non_finite;
@@ -91,11 +92,13 @@ class CellGrid {
     for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
     order_.resize(n);
     cursor_.assign(start_.begin(), start_.end());
-    for (std::size_t i = 0; i < n; ++i) order_[cursor_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < n; ++i)
+      order_[cursor_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
     ps.permute(order_);
     // Cell ids in the new order (same counting-sort pass, so no second cell computation).
     for (std::size_t c = 0; c <= num_cells_; ++c)
-      for (std::uint32_t i = start_[c]; i < start_[c + 1]; ++i) cell_of_[i] = static_cast<std::uint32_t>(c);
+      for (std::uint32_t i = start_[c]; i < start_[c + 1]; ++i)
+        cell_of_[i] = static_cast<std::uint32_t>(c);
     ps.n_active = start_[num_cells_];
     // Cells holding fluid: wall cells with no fluid around them can skip the pair loop.
     has_fluid_.assign(num_cells_, 0);
@@ -123,7 +126,8 @@ class CellGrid {
     if constexpr (D == 1) {
       fn(c);
     } else if constexpr (D == 2) {
-      for (long dy = -1; dy <= 1; ++dy) fn(static_cast<std::size_t>(static_cast<long>(c) + dy * nx));
+      for (long dy = -1; dy <= 1; ++dy)
+        fn(static_cast<std::size_t>(static_cast<long>(c) + dy * nx));
     } else {
       const long nxy = nx * n_[1];
       for (long dz = -1; dz <= 1; ++dz)

@@ -37,7 +37,8 @@ FluidTotals<D> fluid_totals(const ParticleSet<D>& ps) {
 // measured along `up`), plus dp/2 so it marks the fluid's edge rather than a particle centre.
 // Returns -inf when no fluid particle is in the band.
 template <int D>
-double surge_front(const ParticleSet<D>& ps, const Vec<D>& up, double floor, double band, double dp) {
+double surge_front(const ParticleSet<D>& ps, const Vec<D>& up, double floor, double band,
+                   double dp) {
   double front = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.kind[i] != Kind::Fluid) continue;

@@ -88,7 +88,9 @@ void interact(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Kernel& k
     }
     std::array<std::pair<std::uint32_t, std::uint32_t>, (D == 3 ? 9 : 3)> ranges;
     int nr = 0;
-    grid.for_each_neighbour_range(c, [&](std::uint32_t b, std::uint32_t e) { ranges[nr++] = {b, e}; });
+    grid.for_each_neighbour_range(c, [&](std::uint32_t b, std::uint32_t e) {
+      ranges[nr++] = {b, e};
+    });
 
     for (std::uint32_t a = cb; a < ce; ++a) {
       const V xa = ps.pos[a], va = ps.vel[a];

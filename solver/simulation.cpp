@@ -15,7 +15,8 @@ Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles)
   if (!(prm_.h > 0.0) || !(prm_.c0 > 0.0) || !(prm_.dp > 0.0))
     throw std::invalid_argument("Simulation: h, c0 and dp must be positive");
   const double support = kernel_support_factor(prm_.kernel) * prm_.h;
-  grid_ = CellGrid<D>(prm_.domain_min.template head<D>(), prm_.domain_max.template head<D>(), support);
+  grid_ =
+      CellGrid<D>(prm_.domain_min.template head<D>(), prm_.domain_max.template head<D>(), support);
   f_.resize(ps_.total());
   sort_particles();
 }
@@ -88,7 +89,8 @@ void Simulation<D>::step() {
   const double lo = prm_.rho_min_factor * prm_.rho0, hi = prm_.rho_max_factor * prm_.rho0;
   std::size_t out = 0;
   for (std::size_t i = 0; i < ps_.size(); ++i) {
-    if (ps_.kind[i] == Kind::Fluid && std::isfinite(ps_.rho[i]) && (ps_.rho[i] < lo || ps_.rho[i] > hi)) {
+    if (ps_.kind[i] == Kind::Fluid && std::isfinite(ps_.rho[i]) &&
+        (ps_.rho[i] < lo || ps_.rho[i] > hi)) {
       ps_.pos[i].setConstant(std::numeric_limits<double>::quiet_NaN());
       ++out;
     }
@@ -163,12 +165,13 @@ void Simulation<D>::step_verlet() {
   const double dt = dt_, dt2 = dt_ * dt_;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
-    const double rho_new = euler ? ps_.rho[i] + dt * f_.drho[i] : ps_.rho0[i] + 2.0 * dt * f_.drho[i];
+    const double rho_new =
+        euler ? ps_.rho[i] + dt * f_.drho[i] : ps_.rho0[i] + 2.0 * dt * f_.drho[i];
     ps_.rho0[i] = ps_.rho[i];
     ps_.rho[i] = rho_new;
     if (ps_.kind[i] == Kind::Fluid) {
-      const Vec<D> v_new = euler ? Vec<D>(ps_.vel[i] + dt * f_.ace[i])
-                                 : Vec<D>(ps_.vel0[i] + 2.0 * dt * f_.ace[i]);
+      const Vec<D> v_new =
+          euler ? Vec<D>(ps_.vel[i] + dt * f_.ace[i]) : Vec<D>(ps_.vel0[i] + 2.0 * dt * f_.ace[i]);
       ps_.pos[i] += dt * ps_.vel[i] + 0.5 * dt2 * f_.ace[i];
       ps_.vel0[i] = ps_.vel[i];
       ps_.vel[i] = v_new;

@@ -63,7 +63,8 @@ void add_inside(ParticleSet<D>& ps, const Box<D>& box, std::mt19937_64& rng, int
   };
   for (int k = 0; k < n_uniform; ++k) add_particle(ps, uniform_point());
   for (int c = 0; c < 2; ++c) {
-    const Vec<D> centre = c == 0 ? Vec<D>(0.5 * (box.lo + box.hi)) : Vec<D>(box.lo + filled<D>(0.05));
+    const Vec<D> centre =
+        c == 0 ? Vec<D>(0.5 * (box.lo + box.hi)) : Vec<D>(box.lo + filled<D>(0.05));
     for (int k = 0; k < 400; ++k) {
       Vec<D> x;
       for (int d = 0; d < D; ++d) x[d] = centre[d] + (u(rng) - 0.5) * 1.5 * box.cell;
@@ -168,8 +169,8 @@ TYPED_TEST(CellGridTest, NeighboursMatchBruteForce) {
   std::size_t pairs = 0, max_neigh = 0;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const auto expected = brute_force(ps, ps.pos[i], box.cell);
-    const auto found = through_grid(ps, ps.pos[i], box.cell,
-                                    [&](auto fn) { grid.for_each_candidate(i, fn); });
+    const auto found =
+        through_grid(ps, ps.pos[i], box.cell, [&](auto fn) { grid.for_each_candidate(i, fn); });
     ASSERT_EQ(found, expected) << "particle id " << ps.id[i];
     pairs += found.size();
     max_neigh = std::max(max_neigh, found.size());
@@ -236,8 +237,8 @@ TYPED_TEST(CellGridTest, ExcludesOutOfDomainAndNonFinite) {
 
   // Neighbour sets still match brute force (which sees only the active range).
   for (std::size_t i = 0; i < ps.size(); i += 7) {
-    const auto found = through_grid(ps, ps.pos[i], box.cell,
-                                    [&](auto fn) { grid.for_each_candidate(i, fn); });
+    const auto found =
+        through_grid(ps, ps.pos[i], box.cell, [&](auto fn) { grid.for_each_candidate(i, fn); });
     ASSERT_EQ(found, brute_force(ps, ps.pos[i], box.cell)) << "particle id " << ps.id[i];
   }
 }
@@ -277,8 +278,8 @@ TYPED_TEST(CellGridTest, SecondSortIsNoOpAndResortAfterMotion) {
   EXPECT_EQ(ps.size(), active - leaving);
   for (std::size_t i = 1; i < ps.size(); ++i) EXPECT_LE(grid.cell_of(i - 1), grid.cell_of(i));
   for (std::size_t i = 0; i < ps.size(); i += 5) {
-    const auto found = through_grid(ps, ps.pos[i], box.cell,
-                                    [&](auto fn) { grid.for_each_candidate(i, fn); });
+    const auto found =
+        through_grid(ps, ps.pos[i], box.cell, [&](auto fn) { grid.for_each_candidate(i, fn); });
     ASSERT_EQ(found, brute_force(ps, ps.pos[i], box.cell)) << "particle id " << ps.id[i];
   }
 }
@@ -298,8 +299,8 @@ TYPED_TEST(CellGridTest, CandidatesNearArbitraryPoints) {
     Vec<D> x;
     for (int d = 0; d < D; ++d) x[d] = box.lo[d] + u(rng) * (box.hi[d] - box.lo[d]);
     if (k < 2 * D) x[k % D] = k < D ? box.lo[k % D] : box.hi[k % D];  // probes on the faces
-    const auto found = through_grid(ps, x, box.cell,
-                                    [&](auto fn) { grid.for_each_candidate_near(x, fn); });
+    const auto found =
+        through_grid(ps, x, box.cell, [&](auto fn) { grid.for_each_candidate_near(x, fn); });
     const auto expected = brute_force(ps, x, box.cell);
     ASSERT_EQ(found, expected) << "probe " << k;
     probes_with_neighbours += expected.empty() ? 0 : 1;
@@ -307,8 +308,8 @@ TYPED_TEST(CellGridTest, CandidatesNearArbitraryPoints) {
   EXPECT_GT(probes_with_neighbours, 1000);
 
   // Documented behaviour: a point outside the domain (or NaN) gets no candidates at all.
-  for (const Vec<D>& x : {Vec<D>(box.hi + filled<D>(0.01)), Vec<D>(box.lo - filled<D>(0.5)),
-                          filled<D>(kNaN)}) {
+  for (const Vec<D>& x :
+       {Vec<D>(box.hi + filled<D>(0.01)), Vec<D>(box.lo - filled<D>(0.5)), filled<D>(kNaN)}) {
     int calls = 0;
     grid.for_each_candidate_near(x, [&](std::uint32_t) { ++calls; });
     EXPECT_EQ(calls, 0);

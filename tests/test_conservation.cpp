@@ -53,11 +53,13 @@ template <int D>
 void check_momentum(IntegratorType integ, ViscosityModel visc) {
   const double dp = 0.01;
   const int n_side = D == 2 ? 24 : 10;
-  Simulation<D> sim(free_params<D>(dp, n_side, integ, visc), random_block<D>(n_side, dp, 1000.0, 7));
+  Simulation<D> sim(free_params<D>(dp, n_side, integ, visc),
+                    random_block<D>(n_side, dp, 1000.0, 7));
   const auto before = fluid_totals(sim.particles());
   const auto mass_by_id = [&sim]() {
     std::vector<double> m(sim.particles().total());
-    for (std::size_t i = 0; i < sim.particles().size(); ++i) m[sim.particles().id[i]] = sim.particles().mass[i];
+    for (std::size_t i = 0; i < sim.particles().size(); ++i)
+      m[sim.particles().id[i]] = sim.particles().mass[i];
     return m;
   };
   const std::vector<double> mass0 = mass_by_id();
@@ -79,7 +81,8 @@ void check_momentum(IntegratorType integ, ViscosityModel visc) {
   // two particles of a pair, so the drift is a few ulps of the momentum scale per step.
   EXPECT_LT(drift, 1e-12 * scale);
   // The particles did move and interact (the test is not vacuous).
-  EXPECT_GT((after.momentum - before.momentum).norm() + std::abs(after.kinetic_energy - before.kinetic_energy),
+  EXPECT_GT((after.momentum - before.momentum).norm() +
+                std::abs(after.kinetic_energy - before.kinetic_energy),
             0.0);
   EXPECT_NE(after.kinetic_energy, before.kinetic_energy);
 }

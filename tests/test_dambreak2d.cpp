@@ -17,7 +17,8 @@ namespace {
 constexpr double kA = 0.05715, kG = 9.81, kTankLength = 5 * kA;
 
 std::vector<std::pair<double, double>> read_reference() {
-  std::ifstream f(std::string(SWELL_SOURCE_DIR) + "/validation/reference/martin_moyce_1952_front.csv");
+  std::ifstream f(std::string(SWELL_SOURCE_DIR) +
+                  "/validation/reference/martin_moyce_1952_front.csv");
   std::vector<std::pair<double, double>> tz;
   std::string line;
   while (std::getline(f, line)) {
@@ -59,7 +60,8 @@ TEST(DamBreak2D, MartinMoyceFront) {
     front.emplace_back(sim.time() * t_scale,
                        surge_front(ps, Vec<2>(0, 1), floor, band, spec.dp) / kA);
     for (std::size_t i = 0; i < ps.size(); ++i)
-      if (ps.kind[i] == Kind::Fluid && (ps.pos[i].x() < 0 || ps.pos[i].x() > kTankLength || ps.pos[i].y() < 0))
+      if (ps.kind[i] == Kind::Fluid &&
+          (ps.pos[i].x() < 0 || ps.pos[i].x() > kTankLength || ps.pos[i].y() < 0))
         leaked = true;
   }
   EXPECT_FALSE(leaked) << "a fluid particle went through a wall";

@@ -18,12 +18,14 @@ CaseSpec tank_case(int dim, double dp, double t_end) {
   if (dim == 2) {
     text = "dim: 2\ndp: " + std::to_string(dp) + "\ntime: {end: " + std::to_string(t_end) +
            "}\nbodies:\n"
-           "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.4, 0.3]}}, layers: 3}\n"
+           "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.4, 0.3]}}, layers: "
+           "3}\n"
            "  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.4, 0.2]}}}\n";
   } else {
     text = "dim: 3\ndp: " + std::to_string(dp) + "\ntime: {end: " + std::to_string(t_end) +
            "}\nbodies:\n"
-           "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0, 0], max: [0.4, 0.2, 0.3]}}, layers: 2, open: [zmax]}\n"
+           "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0, 0], max: [0.4, 0.2, 0.3]}}, "
+           "layers: 2, open: [zmax]}\n"
            "  - {name: water, kind: fluid, shape: {box: {min: [0, 0, 0], max: [0.4, 0.2, 0.2]}}}\n";
   }
   return parse_case_text(text, "hydrostatic_tank.yaml");
@@ -39,7 +41,8 @@ void check_hydrostatic(double dp, double t_end, double tol) {
   // Starts at rest: after 50 steps the fastest particle moves far slower than sqrt(g H).
   for (int s = 0; s < 50; ++s) sim.step();
   const double v_scale = std::sqrt(kG * kDepth);
-  EXPECT_LT(fluid_totals(sim.particles()).max_speed, 0.02 * v_scale) << "tank does not start at rest";
+  EXPECT_LT(fluid_totals(sim.particles()).max_speed, 0.02 * v_scale)
+      << "tank does not start at rest";
 
   while (sim.time() < t_end) sim.step();
   const auto& ps = sim.particles();
@@ -71,8 +74,9 @@ void check_hydrostatic(double dp, double t_end, double tol) {
     const double depth = sum_d[b] / count[b];
     const double p_mean = sum_p[b] / count[b];
     const double err = (p_mean - kRho0 * kG * depth) / p_bottom;
-    std::cout << "  " << D << "D depth " << depth << " m: p = " << p_mean << " Pa, rho0 g d = "
-              << kRho0 * kG * depth << " Pa, error " << 100 * err << " % of rho0 g H\n";
+    std::cout << "  " << D << "D depth " << depth << " m: p = " << p_mean
+              << " Pa, rho0 g d = " << kRho0 * kG * depth << " Pa, error " << 100 * err
+              << " % of rho0 g H\n";
     worst = std::max(worst, std::abs(err));
   }
   EXPECT_LT(worst, tol);
@@ -83,8 +87,12 @@ void check_hydrostatic(double dp, double t_end, double tol) {
 // Tolerance: 3% of the bottom pressure rho0 g H. A WCSPH tank with DBC walls and the default
 // Fourtakas diffusion settles to within about 1% here; errors from a wrong EoS, a missing
 // hydrostatic initialisation or a sign error in gravity are tens of percent.
-TEST(Hydrostatic, Tank2DPressureFollowsDepth) { check_hydrostatic<2>(0.01, 1.0, 0.03); }
-TEST(Hydrostatic, Tank3DPressureFollowsDepth) { check_hydrostatic<3>(0.02, 0.6, 0.03); }
+TEST(Hydrostatic, Tank2DPressureFollowsDepth) {
+  check_hydrostatic<2>(0.01, 1.0, 0.03);
+}
+TEST(Hydrostatic, Tank3DPressureFollowsDepth) {
+  check_hydrostatic<3>(0.02, 0.6, 0.03);
+}
 
 }  // namespace
 }  // namespace swell

@@ -178,8 +178,8 @@ class InterpolationTest : public ::testing::Test {
       const InterpResult r = interpolate(lat, make_stencil<D>(lat.dp, h), field);
       hs.push_back(h);
       errs.push_back(r.max_abs_err);
-      std::printf("[interp %dD %-9s] N=%4d dp=%.6f h=%.6f points=%8ld max|err|=%.6e\n", D, label,
-                  n, lat.dp, h, r.points, r.max_abs_err);
+      std::printf("[interp %dD %-9s] N=%4d dp=%.6f h=%.6f points=%8ld max|err|=%.6e\n", D, label, n,
+                  lat.dp, h, r.points, r.max_abs_err);
     }
     for (std::size_t k = 1; k < hs.size(); ++k)
       std::printf("[interp %dD %-9s] local order %d->%d: %.4f\n", D, label, resolutions()[k - 1],
@@ -225,8 +225,8 @@ TYPED_TEST(Interp, LinearFieldExact) {
   constexpr int D = TypeParam::value;
   for (int n : this->resolutions()) {
     const Lattice<D> lat(n);
-    const InterpResult r =
-        interpolate(lat, make_stencil<D>(lat.dp, this->kHOverDp * lat.dp), Field<D>(linear_field<D>));
+    const InterpResult r = interpolate(lat, make_stencil<D>(lat.dp, this->kHOverDp * lat.dp),
+                                       Field<D>(linear_field<D>));
     std::printf("[interp %dD linear   ] N=%4d max rel err = %.3e\n", D, n, r.max_rel_err);
     ASSERT_GT(r.points, 0);
     // 1e-12: sums of ~100-200 terms of size ~1-5 in double precision give ~1e-15 relative.

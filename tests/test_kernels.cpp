@@ -80,8 +80,8 @@ TYPED_TEST(KernelTest, IntegratesToOne) {
     const double integral = radial_moment(k, 0);
     // 1e-6: the quadrature itself is accurate to ~1e-12 (exact pieces up to degree 3, smooth
     // integrands elsewhere), so any larger deviation is a wrong normalisation constant.
-    EXPECT_NEAR(integral, 1.0, 1e-6) << TypeParam::kName << " D=" << DimOf<TypeParam>::value
-                                     << " h=" << h;
+    EXPECT_NEAR(integral, 1.0, 1e-6)
+        << TypeParam::kName << " D=" << DimOf<TypeParam>::value << " h=" << h;
   }
 }
 
