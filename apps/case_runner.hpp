@@ -39,6 +39,9 @@ struct RunOptions {
   int threads = 0;              // 0: OpenMP default
   bool progress = true;         // progress line on stderr
   std::ostream* log = nullptr;  // summary stream (stdout if null)
+  // Continue from OUTDIR/checkpoint.h5 (or its .prev if the last one is damaged) up to the
+  // case's time.end; outputs written after the checkpoint time are replaced.
+  bool restart = false;
 };
 
 struct RunSummary {
@@ -51,10 +54,13 @@ struct RunSummary {
   PhaseTimes phases;
   double output_seconds = 0.0;
   int snapshots = 0;
+  double restarted_from = -1.0;  // checkpoint time when restarted
 };
 
-// Runs the case to time.end, writing OUTDIR/<name>.pvd + OUTDIR/vtk/*.vtp and
-// OUTDIR/diagnostics.csv. Throws InstabilityError if the run blows up.
+// Runs the case to time.end, writing OUTDIR/<name>.pvd + OUTDIR/vtk/*.vtp, OUTDIR/<name>.h5
+// (snapshots + metadata), OUTDIR/checkpoint.h5, OUTDIR/gauges_<kind>.csv and
+// OUTDIR/diagnostics.csv. Throws InstabilityError if the run blows up (the last checkpoint
+// written before stays valid).
 RunSummary run_case(const CaseSpec& spec, const RunOptions& options);
 
 }  // namespace swell

@@ -2,7 +2,9 @@
 //
 // The reader walks the YAML tree section by section. Each map is first checked against its list
 // of allowed keys, so a misspelt key is an error rather than a silently ignored setting; then
-// each value is converted by a small typed helper that names the key path in its message.
+// each value is converted by a small typed helper that names the key path in its message. The
+// helpers (NodeReader) are shared with the gauge reader, io/case_gauges.cpp, through
+// io/case_parse_util.hpp.
 #include "io/case_file.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -18,41 +20,13 @@
 #include <utility>
 #include <vector>
 
+#include "io/case_parse_util.hpp"
+
 namespace swell {
 
+namespace case_parse {
+
 namespace {
-
-using Names = std::vector<std::string_view>;
-
-// Shape kinds known to read_shape(); listed in messages.
-const Names kShapeKinds = {"box"};
-
-std::string join(const Names& names) {
-  std::string out;
-  for (const std::string_view name : names) {
-    if (!out.empty()) out += ", ";
-    out += name;
-  }
-  return out;
-}
-
-bool contains(const Names& names, std::string_view name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-// Key paths: child("physics", "rho0") == "physics.rho0", item("bodies", 1) == "bodies[1]".
-std::string child(const std::string& path, std::string_view key) {
-  return path.empty() ? std::string(key) : path + "." + std::string(key);
-}
-std::string item(const std::string& path, std::size_t index) {
-  return path + "[" + std::to_string(index) + "]";
-}
-
-// 1-based line of a node; nodes built by the parser always carry a mark, others count as line 1.
-int line_of(const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  return mark.is_null() ? 1 : mark.line + 1;
-}
 
 // Quoted scalars ('1.0') carry the tag "!"; only plain scalars are read as numbers or booleans.
 bool is_plain_scalar(const YAML::Node& node) {
@@ -71,7 +45,26 @@ std::optional<std::string> short_list(const YAML::Node& node) {
   return out + "]";
 }
 
-// A short description of what a node holds, for "expected X, got Y" messages.
+}  // namespace
+
+std::string join(const Names& names) {
+  std::string out;
+  for (const std::string_view name : names) {
+    if (!out.empty()) out += ", ";
+    out += name;
+  }
+  return out;
+}
+
+bool contains(const Names& names, std::string_view name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+int line_of(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return mark.is_null() ? 1 : mark.line + 1;
+}
+
 std::string describe(const YAML::Node& node) {
   if (is_plain_scalar(node)) return "'" + node.Scalar() + "'";
   if (node.IsScalar()) return "the quoted string '" + node.Scalar() + "'";
@@ -83,59 +76,108 @@ std::string describe(const YAML::Node& node) {
   return "an empty value";
 }
 
-class CaseReader {
+// ---------------------------------------------------------------------------------------------
+// Maps and typed values
+
+void NodeReader::check_keys(const YAML::Node& map, const std::string& path, const Names& allowed,
+                            const std::string& context) const {
+  const std::string where = path.empty() ? "" : " in " + path + context;
+  std::set<std::string> seen;
+  for (const auto& entry : map) {
+    const YAML::Node& key = entry.first;
+    if (!key.IsScalar()) fail(key, "keys" + where + " must be plain names, got " + describe(key));
+    const std::string& k = key.Scalar();
+    if (!contains(allowed, k)) {
+      fail(key,
+           "unknown key '" + child(path, k) + "'; allowed keys" + where + ": " + join(allowed));
+    }
+    if (!seen.insert(k).second) fail(key, "duplicate key '" + child(path, k) + "'");
+  }
+}
+
+double NodeReader::number(const YAML::Node& node, const std::string& path) const {
+  double value = 0.0;
+  const bool ok =
+      is_plain_scalar(node) && YAML::convert<double>::decode(node, value) && std::isfinite(value);
+  expect(ok, node, path, "a number");
+  return value;
+}
+
+int NodeReader::integer(const YAML::Node& node, const std::string& path) const {
+  int value = 0;
+  const bool ok = is_plain_scalar(node) && YAML::convert<int>::decode(node, value);
+  expect(ok, node, path, "an integer");
+  return value;
+}
+
+bool NodeReader::boolean(const YAML::Node& node, const std::string& path) const {
+  bool value = false;
+  const bool ok = is_plain_scalar(node) && YAML::convert<bool>::decode(node, value);
+  expect(ok, node, path, "true or false");
+  return value;
+}
+
+std::string NodeReader::text(const YAML::Node& node, const std::string& path) const {
+  expect(node.IsScalar(), node, path, "a string");
+  return node.Scalar();
+}
+
+std::string NodeReader::name(const YAML::Node& node, const std::string& path) const {
+  const std::string value = text(node, path);
+  const bool blank = value.find_first_not_of(" \t") == std::string::npos;
+  expect(!blank, node, path, "a non-empty name");
+  return value;
+}
+
+std::string NodeReader::choice(const YAML::Node& node, const std::string& path,
+                               const Names& allowed) const {
+  const std::string value = text(node, path);
+  if (!contains(allowed, value)) {
+    fail(node, path + ": unknown value '" + value + "'; expected one of: " + join(allowed));
+  }
+  return value;
+}
+
+std::vector<double> NodeReader::numbers(const YAML::Node& node, const std::string& path,
+                                        std::size_t count) const {
+  const std::string expected = "a list of " + std::to_string(count) + " numbers";
+  expect(node.IsSequence() && node.size() == count, node, path, expected);
+  std::vector<double> values;
+  for (std::size_t i = 0; i < count; ++i) {
+    const YAML::Node element = node[i];
+    double value = 0.0;
+    if (!is_plain_scalar(element) || !YAML::convert<double>::decode(element, value) ||
+        !std::isfinite(value)) {
+      fail(element, path + ": expected " + expected + ", but item " + std::to_string(i) + " is " +
+                        describe(element));
+    }
+    values.push_back(value);
+  }
+  return values;
+}
+
+Eigen::Vector3d NodeReader::vector(const YAML::Node& node, const std::string& path) const {
+  const std::vector<double> values = numbers(node, path, static_cast<std::size_t>(dim_));
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();  // z stays 0 in 2D
+  for (int d = 0; d < dim_; ++d) v[d] = values[static_cast<std::size_t>(d)];
+  return v;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sections
+
+namespace {
+
+// Shape kinds known to read_shape(); listed in messages.
+const Names kShapeKinds = {"box"};
+
+class CaseReader : private NodeReader {
  public:
-  explicit CaseReader(std::string file) : file_(std::move(file)) {}
+  explicit CaseReader(std::string file) : NodeReader(std::move(file)) {}
 
   CaseSpec read(const YAML::Node& root);
 
  private:
-  // --- errors ---
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const {
-    throw CaseError(file_, line_of(at), message);
-  }
-  void expect(bool ok, const YAML::Node& at, const std::string& path,
-              const std::string& expected) const {
-    if (!ok) fail(at, path + ": expected " + expected + ", got " + describe(at));
-  }
-
-  // --- maps and keys ---
-  void check_keys(const YAML::Node& map, const std::string& path, const Names& allowed,
-                  const std::string& context = "") const;
-  void expect_map(const YAML::Node& node, const std::string& path, const Names& allowed) const {
-    expect(node.IsMap(), node, path, "a map with keys " + join(allowed));
-    check_keys(node, path, allowed);
-  }
-  static std::optional<YAML::Node> find(const YAML::Node& map, std::string_view key) {
-    const YAML::Node value = map[std::string(key)];
-    if (!value.IsDefined()) return std::nullopt;
-    return value;
-  }
-  YAML::Node require(const YAML::Node& map, const std::string& path, std::string_view key) const {
-    std::optional<YAML::Node> value = find(map, key);
-    if (!value) fail(map, "missing required key '" + child(path, key) + "'");
-    return *value;
-  }
-
-  // --- typed values ---
-  double number(const YAML::Node& node, const std::string& path) const;
-  int integer(const YAML::Node& node, const std::string& path) const;
-  bool boolean(const YAML::Node& node, const std::string& path) const;
-  std::string text(const YAML::Node& node, const std::string& path) const;
-  std::string name(const YAML::Node& node, const std::string& path) const;
-  std::string choice(const YAML::Node& node, const std::string& path, const Names& allowed) const;
-  std::vector<double> numbers(const YAML::Node& node, const std::string& path,
-                              std::size_t count) const;
-  Eigen::Vector3d vector(const YAML::Node& node, const std::string& path) const;
-  // A number that must satisfy `ok`; `expected` describes the condition ("a number > 0").
-  template <class Predicate>
-  double number_if(const YAML::Node& node, const std::string& path, Predicate ok,
-                   const std::string& expected) const {
-    const double value = number(node, path);
-    expect(ok(value), node, path, expected);
-    return value;
-  }
-
   // --- sections ---
   void read_physics(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_viscosity(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
@@ -154,97 +196,7 @@ class CaseReader {
   void check_ordered(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
                      const YAML::Node& min_node, const YAML::Node& max_node,
                      const std::string& path) const;
-
-  std::string file_;
-  int dim_ = 2;  // set from the top-level `dim` before anything dimension-dependent
 };
-
-// ---------------------------------------------------------------------------------------------
-// Maps and typed values
-
-void CaseReader::check_keys(const YAML::Node& map, const std::string& path, const Names& allowed,
-                            const std::string& context) const {
-  const std::string where = path.empty() ? "" : " in " + path + context;
-  std::set<std::string> seen;
-  for (const auto& entry : map) {
-    const YAML::Node& key = entry.first;
-    if (!key.IsScalar()) fail(key, "keys" + where + " must be plain names, got " + describe(key));
-    const std::string& k = key.Scalar();
-    if (!contains(allowed, k)) {
-      fail(key,
-           "unknown key '" + child(path, k) + "'; allowed keys" + where + ": " + join(allowed));
-    }
-    if (!seen.insert(k).second) fail(key, "duplicate key '" + child(path, k) + "'");
-  }
-}
-
-double CaseReader::number(const YAML::Node& node, const std::string& path) const {
-  double value = 0.0;
-  const bool ok =
-      is_plain_scalar(node) && YAML::convert<double>::decode(node, value) && std::isfinite(value);
-  expect(ok, node, path, "a number");
-  return value;
-}
-
-int CaseReader::integer(const YAML::Node& node, const std::string& path) const {
-  int value = 0;
-  const bool ok = is_plain_scalar(node) && YAML::convert<int>::decode(node, value);
-  expect(ok, node, path, "an integer");
-  return value;
-}
-
-bool CaseReader::boolean(const YAML::Node& node, const std::string& path) const {
-  bool value = false;
-  const bool ok = is_plain_scalar(node) && YAML::convert<bool>::decode(node, value);
-  expect(ok, node, path, "true or false");
-  return value;
-}
-
-std::string CaseReader::text(const YAML::Node& node, const std::string& path) const {
-  expect(node.IsScalar(), node, path, "a string");
-  return node.Scalar();
-}
-
-std::string CaseReader::name(const YAML::Node& node, const std::string& path) const {
-  const std::string value = text(node, path);
-  const bool blank = value.find_first_not_of(" \t") == std::string::npos;
-  expect(!blank, node, path, "a non-empty name");
-  return value;
-}
-
-std::string CaseReader::choice(const YAML::Node& node, const std::string& path,
-                               const Names& allowed) const {
-  const std::string value = text(node, path);
-  if (!contains(allowed, value)) {
-    fail(node, path + ": unknown value '" + value + "'; expected one of: " + join(allowed));
-  }
-  return value;
-}
-
-std::vector<double> CaseReader::numbers(const YAML::Node& node, const std::string& path,
-                                        std::size_t count) const {
-  const std::string expected = "a list of " + std::to_string(count) + " numbers";
-  expect(node.IsSequence() && node.size() == count, node, path, expected);
-  std::vector<double> values;
-  for (std::size_t i = 0; i < count; ++i) {
-    const YAML::Node element = node[i];
-    double value = 0.0;
-    if (!is_plain_scalar(element) || !YAML::convert<double>::decode(element, value) ||
-        !std::isfinite(value)) {
-      fail(element, path + ": expected " + expected + ", but item " + std::to_string(i) + " is " +
-                        describe(element));
-    }
-    values.push_back(value);
-  }
-  return values;
-}
-
-Eigen::Vector3d CaseReader::vector(const YAML::Node& node, const std::string& path) const {
-  const std::vector<double> values = numbers(node, path, static_cast<std::size_t>(dim_));
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();  // z stays 0 in 2D
-  for (int d = 0; d < dim_; ++d) v[d] = values[static_cast<std::size_t>(d)];
-  return v;
-}
 
 void CaseReader::check_ordered(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
                                const YAML::Node& min_node, const YAML::Node& max_node,
@@ -258,11 +210,9 @@ void CaseReader::check_ordered(const Eigen::Vector3d& min, const Eigen::Vector3d
   }
 }
 
-// ---------------------------------------------------------------------------------------------
-// Sections
-
 CaseSpec CaseReader::read(const YAML::Node& root) {
-  const Names top_keys = {"name", "dim", "dp", "physics", "time", "domain", "bodies", "output"};
+  const Names top_keys = {"name",   "dim",    "dp",     "physics", "time",
+                          "domain", "bodies", "gauges", "output"};
   expect(root.IsMap(), root, "case file", "a map with keys " + join(top_keys));
   check_keys(root, "", top_keys);
 
@@ -280,6 +230,9 @@ CaseSpec CaseReader::read(const YAML::Node& root) {
   read_time(require(root, "", "time"), "time", spec);
   if (auto node = find(root, "domain")) read_domain(*node, "domain", spec);
   spec.bodies = read_bodies(require(root, "", "bodies"), "bodies");
+  if (auto node = find(root, "gauges")) {
+    spec.gauges = read_gauges(*this, *node, "gauges", spec.bodies);
+  }
   if (auto node = find(root, "output")) read_output(*node, "output", spec);
   return spec;
 }
@@ -394,12 +347,22 @@ void CaseReader::read_domain(const YAML::Node& node, const std::string& path,
 
 void CaseReader::read_output(const YAML::Node& node, const std::string& path,
                              CaseSpec& spec) const {
-  expect_map(node, path, {"every", "vtk"});
+  expect_map(node, path, {"every", "vtk", "vtk_split", "hdf5", "checkpoint_every", "gauge_every"});
+  const auto non_negative = [](double e) { return e >= 0.0; };
   if (auto v = find(node, "every")) {
-    spec.output_every = number_if(
-        *v, child(path, "every"), [](double e) { return e >= 0.0; }, "a number >= 0");
+    spec.output_every = number_if(*v, child(path, "every"), non_negative, "a number >= 0");
   }
   if (auto v = find(node, "vtk")) spec.vtk = boolean(*v, child(path, "vtk"));
+  if (auto v = find(node, "vtk_split")) spec.vtk_split = boolean(*v, child(path, "vtk_split"));
+  if (auto v = find(node, "hdf5")) spec.hdf5 = boolean(*v, child(path, "hdf5"));
+  if (auto v = find(node, "checkpoint_every")) {
+    spec.checkpoint_every =
+        number_if(*v, child(path, "checkpoint_every"), non_negative, "a number >= 0");
+  }
+  if (auto v = find(node, "gauge_every")) {
+    spec.gauge_every = number_if(
+        *v, child(path, "gauge_every"), [](double e) { return e > 0.0; }, "a number > 0");
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -536,6 +499,7 @@ std::string default_case_name(const std::string& file_label) {
 }
 
 }  // namespace
+}  // namespace case_parse
 
 CaseError::CaseError(const std::string& file, int line, const std::string& message)
     : std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
@@ -545,17 +509,17 @@ CaseError::CaseError(const std::string& file, int line, const std::string& messa
       message_(message) {}
 
 CaseSpec parse_case_text(const std::string& text, const std::string& file_label) {
-  const YAML::Node root = parse_yaml(text, file_label);
+  const YAML::Node root = case_parse::parse_yaml(text, file_label);
   CaseSpec spec;
   try {
-    spec = CaseReader(file_label).read(root);
+    spec = case_parse::CaseReader(file_label).read(root);
   } catch (const YAML::Exception& e) {
     // The reader avoids throwing yaml-cpp conversions; this only guards against the unforeseen.
     throw CaseError(file_label, e.mark.is_null() ? 0 : e.mark.line + 1, e.msg);
   }
   spec.file = file_label;
   spec.text = text;
-  if (spec.name.empty()) spec.name = default_case_name(file_label);
+  if (spec.name.empty()) spec.name = case_parse::default_case_name(file_label);
   return spec;
 }
 

@@ -33,6 +33,25 @@ struct BodySpec {
   int line = 0;  // line in the case file, for messages
 };
 
+// A measurement taken during the run (and by `swell probe` from saved snapshots).
+struct GaugeSpec {
+  enum class Kind { Pressure, Height, Velocity, Force, Front };
+  std::string name;
+  Kind kind = Kind::Pressure;
+  // pressure, velocity: the point; height: the start of the vertical measuring line (its
+  // horizontal position, and its vertical coordinate where the line starts, usually the floor).
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+  // pressure: optional wall normal (pointing into the fluid); the probe then samples at
+  // at + offset * normal, offset defaulting to h (DualSPHysics-style wall pressure probes).
+  std::optional<Eigen::Vector3d> normal;
+  std::optional<double> offset;
+  std::string body;                             // force: the boundary body name
+  std::optional<Eigen::Vector3d> moment_about;  // force: moment reference point (default origin)
+  std::optional<double> band;                   // front: band height above the floor (default 2h)
+  double every = 0.0;                           // sampling interval [s]; 0: output.gauge_every
+  int line = 0;
+};
+
 struct CaseSpec {
   std::string file;  // path of the case file, for messages
   std::string text;  // the case file as read, kept for metadata
@@ -64,10 +83,15 @@ struct CaseSpec {
   std::optional<Eigen::Vector3d> domain_min, domain_max;
 
   std::vector<BodySpec> bodies;
+  std::vector<GaugeSpec> gauges;
 
   // output
   double output_every = 0.0;  // 0: only the initial and final states
   bool vtk = true;
+  bool vtk_split = false;         // also write fluid-only and boundary-only .vtp series
+  bool hdf5 = true;               // snapshots + metadata in OUTDIR/<name>.h5
+  double checkpoint_every = 0.0;  // 0: at every output time
+  double gauge_every = 0.0;       // default gauge interval; 0: output.every / 10
 };
 
 }  // namespace swell

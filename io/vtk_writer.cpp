@@ -115,6 +115,20 @@ void write_vtp(const std::string& path, const ParticleSet<D>& ps,
   if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
 }
 
+void PvdSeries::resume(double t_keep) {
+  entries_.clear();
+  std::ifstream in(path_);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto ts = line.find("timestep=\""), fs = line.find("file=\"");
+    if (ts == std::string::npos || fs == std::string::npos) continue;
+    const double t = std::stod(line.substr(ts + 10));
+    const auto fe = line.find('"', fs + 6);
+    if (t <= t_keep * (1.0 + 1e-9) + 1e-12)
+      entries_.emplace_back(t, line.substr(fs + 6, fe - fs - 6));
+  }
+}
+
 void PvdSeries::add(double time, const std::string& file) {
   entries_.emplace_back(time, file);
   std::ostringstream s;

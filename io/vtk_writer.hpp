@@ -25,6 +25,9 @@ class PvdSeries {
   explicit PvdSeries(std::string path) : path_(std::move(path)) {}
   // `file` is relative to the .pvd's folder.
   void add(double time, const std::string& file);
+  // Reloads the entries of an existing series up to time t_keep (restart); later ones and
+  // their files are dropped from the series.
+  void resume(double t_keep);
   const std::string& path() const { return path_; }
 
  private:

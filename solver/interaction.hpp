@@ -5,7 +5,8 @@
 // Equations (DESIGN.md, defaults as DualSPHysics):
 //   drho_a/dt = sum_b m_b v_ab . gradW_ab + density diffusion (fluid-fluid pairs)
 //   dv_a/dt   = -sum_b m_b (P_a/rho_a^2 + P_b/rho_b^2 + Pi_ab) gradW_ab + viscous + g
-// Boundary (DBC) particles get drho/dt from their fluid neighbours only and no acceleration.
+// Boundary (DBC) particles get drho/dt from their fluid neighbours only; their `ace` holds the
+// force per unit mass exerted on them by the fluid (for force gauges) and is never integrated.
 #pragma once
 
 #include <omp.h>
@@ -110,8 +111,9 @@ void interact(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Kernel& k
           const V vab = va - ps.vel[b];
           const double m_b = ps.mass[b];
           drho += m_b * vab.dot(gradw);
-          if (!fluid_a) continue;
 
+          // Pressure and viscous force. For a wall particle this is the force per unit mass
+          // the fluid exerts on it (used by force gauges), not integrated.
           const double rho_b = ps.rho[b];
           const double vr = vab.dot(rab);
           double pterm = prs_a + out.prs[b];
@@ -121,13 +123,15 @@ void interact(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Kernel& k
             acc += (m_b * lam.factor(r2 * fr, r2, rho_a, rho_b)) * vab;
           }
           acc -= (m_b * pterm) * gradw;
+          if (!fluid_a) continue;
+
           if (vr < 0.0) visc_dt_max = std::max(visc_dt_max, -h * vr / (r2 + eta2));
           if (diffuse && fluid_b)
             drho += dd.drho(rho_a, rho_b, -g.dot(rab), r2 * fr, r2, eta2, m_b / rho_b);
         }
       }
       out.drho[a] = drho;
-      out.ace[a] = fluid_a ? V(acc + g) : V(V::Zero());
+      out.ace[a] = fluid_a ? V(acc + g) : acc;
     }
   }
   out.visc_dt_max = visc_dt_max;

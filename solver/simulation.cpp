@@ -18,7 +18,8 @@ Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles)
   grid_ =
       CellGrid<D>(prm_.domain_min.template head<D>(), prm_.domain_max.template head<D>(), support);
   f_.resize(ps_.total());
-  sort_particles();
+  // Forces at the initial state, so acceleration() (wall loads) is valid before the first step.
+  evaluate();
 }
 
 template <int D>

@@ -29,6 +29,16 @@ struct ExclusionCounts {
   std::size_t total() const { return out_of_domain + non_finite + density_out_of_range; }
 };
 
+// Everything besides the particles that a restart needs to continue a run bit for bit.
+struct SimulationClock {
+  double time = 0.0;
+  long steps = 0;
+  double dt = 0.0;
+  double first_dt = 0.0;
+  int verlet_counter = 0;
+  ExclusionCounts excluded;
+};
+
 struct PhaseTimes {
   double neighbour = 0.0;    // cell sort and reordering [s]
   double interaction = 0.0;  // pressure, pair loop and time-step reductions [s]
@@ -56,10 +66,25 @@ class Simulation {
   // Pressure of every active particle in the current order (recomputed from density).
   const std::vector<double>& pressure();
 
-  // Restores a saved state (restart): time, step count and the Verlet phase.
-  void set_clock(double time, long steps) {
-    time_ = time;
-    steps_ = steps;
+  // Force per unit mass exerted by the fluid on each active wall particle (fluid particles:
+  // their acceleration) at the last evaluation. Valid between steps.
+  const std::vector<Vec<D>>& acceleration() const { return f_.ace; }
+
+  // Clock and counters for checkpoints; restore() continues a run from them. The particles
+  // must be given to the constructor in the order they were saved.
+  SimulationClock clock() const {
+    return {time_, steps_, dt_, first_dt_, verlet_counter_, excluded_};
+  }
+  void restore(const SimulationClock& c) {
+    time_ = c.time;
+    steps_ = c.steps;
+    dt_ = c.dt;
+    first_dt_ = c.first_dt;
+    verlet_counter_ = c.verlet_counter;
+    // Particles excluded by the constructor's sort were still active when saved.
+    excluded_.out_of_domain += c.excluded.out_of_domain;
+    excluded_.non_finite += c.excluded.non_finite;
+    excluded_.density_out_of_range += c.excluded.density_out_of_range;
   }
 
  private:

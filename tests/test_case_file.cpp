@@ -70,7 +70,7 @@ bodies:
   - name: water
     kind: fluid
     shape: {box: {min: [0, 0], max: [0.057, 0.114]}}
-output: {every: 0.01, vtk: false}
+output: {every: 0.01, vtk: false, vtk_split: true, hdf5: false, checkpoint_every: 0, gauge_every: 0.002}
 )";
   const CaseSpec spec = parse_case_text(text, kLabel);
   EXPECT_EQ(spec.file, kLabel);
@@ -100,6 +100,11 @@ output: {every: 0.01, vtk: false}
   EXPECT_EQ(*spec.domain_max, Eigen::Vector3d(0.4, 0.5, 0.0));
   EXPECT_DOUBLE_EQ(spec.output_every, 0.01);
   EXPECT_FALSE(spec.vtk);
+  EXPECT_TRUE(spec.vtk_split);
+  EXPECT_FALSE(spec.hdf5);
+  EXPECT_DOUBLE_EQ(spec.checkpoint_every, 0.0);
+  EXPECT_DOUBLE_EQ(spec.gauge_every, 0.002);
+  EXPECT_TRUE(spec.gauges.empty());
 
   ASSERT_EQ(spec.bodies.size(), 2u);
   const BodySpec& tank = spec.bodies[0];
@@ -156,6 +161,11 @@ bodies:
   EXPECT_FALSE(spec.domain_max.has_value());
   EXPECT_DOUBLE_EQ(spec.output_every, 0.0);
   EXPECT_TRUE(spec.vtk);
+  EXPECT_FALSE(spec.vtk_split);
+  EXPECT_TRUE(spec.hdf5);
+  EXPECT_DOUBLE_EQ(spec.checkpoint_every, 0.0);
+  EXPECT_DOUBLE_EQ(spec.gauge_every, 0.0);
+  EXPECT_TRUE(spec.gauges.empty());
 
   ASSERT_EQ(spec.bodies.size(), 2u);
   EXPECT_EQ(spec.bodies[0].walls, BodySpec::Walls::Outside);
@@ -307,8 +317,9 @@ bodies:
       box: {min: [0, 0], max: [1, 1], centre: [0.5, 0.5]}
 )",
                               8, {"bodies[0].shape.box.centre", "min, max"}));
-  EXPECT_TRUE(ThrowsCaseError(std::string(kMinimal2d) + "output: {every: 0.1, hdf5: true}\n", 6,
-                              {"output.hdf5", "every, vtk"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kMinimal2d) + "output: {every: 0.1, vtu: true}\n", 6,
+      {"output.vtu", "every, vtk, vtk_split, hdf5, checkpoint_every, gauge_every"}));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -457,9 +468,20 @@ TEST(CaseFileErrors, InvalidPhysicsValues) {
       ThrowsCaseError(head + "  density_bounds: [1.1, 1.3]\n", 4, {"physics.density_bounds"}));
 }
 
-TEST(CaseFileErrors, InvalidOutputEvery) {
+TEST(CaseFileErrors, InvalidOutputValues) {
+  const std::string head = std::string(kMinimal2d) + "output:\n  every: 0.1\n";
   EXPECT_TRUE(ThrowsCaseError(std::string(kMinimal2d) + "output: {every: -0.1}\n", 6,
                               {"output.every", ">= 0"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  checkpoint_every: -0.05\n", 8,
+                              {"output.checkpoint_every", "expected a number >= 0", "'-0.05'"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  gauge_every: 0\n", 8,
+                              {"output.gauge_every", "expected a number > 0", "'0'"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  gauge_every: -0.001\n", 8,
+                              {"output.gauge_every", "expected a number > 0"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  vtk_split: yes please\n", 8,
+                              {"output.vtk_split", "expected true or false"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(head + "  hdf5: 1.5\n", 8, {"output.hdf5", "expected true or false"}));
 }
 
 TEST(CaseFileErrors, InvalidBoxAndDomainExtent) {
@@ -550,6 +572,290 @@ bodies:
   - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1, 1]}}}
 )",
                               5, {"bodies", "no fluid body", "kind: fluid"}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Gauges
+
+// A valid 2D case up to `gauges:`, with a boundary body `tank` and a fluid body `water`; the first
+// gauge appended to it is on line 8.
+const char* const kGaugeHead = R"(dim: 2
+dp: 0.01
+time: {end: 1}
+bodies:
+  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1, 1]}}}
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.5, 0.5]}}}
+gauges:
+)";
+
+std::string with_gauges(const std::string& gauges) {
+  return kGaugeHead + gauges;
+}
+
+TEST(CaseFileGauges, ParsesAllKindsIn2d) {
+  const std::string text = with_gauges(
+      R"(  - {name: P1, kind: pressure, at: [0.28575, 0.003], normal: [-3, 4], offset: 0.002}
+  - {name: P2, kind: pressure, at: [0.1, 0.2]}
+  - {name: H1, kind: height, at: [0.1, 0.0], every: 0.002}
+  - {name: V1, kind: velocity, at: [0.1, 0.05]}
+  - {name: F_wall, kind: force, body: tank, moment_about: [0, 0.5]}
+  - {name: F2, kind: force, body: tank}
+  - name: front
+    kind: front
+    band: 0.03
+  - {name: front-2, kind: front}
+output: {every: 0.01, vtk: true, vtk_split: false, hdf5: true, checkpoint_every: 0.05, gauge_every: 0.001}
+)");
+  const CaseSpec spec = parse_case_text(text, kLabel);
+  EXPECT_DOUBLE_EQ(spec.output_every, 0.01);
+  EXPECT_TRUE(spec.vtk);
+  EXPECT_FALSE(spec.vtk_split);
+  EXPECT_TRUE(spec.hdf5);
+  EXPECT_DOUBLE_EQ(spec.checkpoint_every, 0.05);
+  EXPECT_DOUBLE_EQ(spec.gauge_every, 0.001);
+  ASSERT_EQ(spec.gauges.size(), 8u);
+
+  const GaugeSpec& p1 = spec.gauges[0];
+  EXPECT_EQ(p1.name, "P1");
+  EXPECT_EQ(p1.kind, GaugeSpec::Kind::Pressure);
+  EXPECT_EQ(p1.at, Eigen::Vector3d(0.28575, 0.003, 0.0));
+  ASSERT_TRUE(p1.normal.has_value());  // stored normalised
+  EXPECT_NEAR((*p1.normal - Eigen::Vector3d(-0.6, 0.8, 0.0)).norm(), 0.0, 1e-15);
+  ASSERT_TRUE(p1.offset.has_value());
+  EXPECT_DOUBLE_EQ(*p1.offset, 0.002);
+  EXPECT_DOUBLE_EQ(p1.every, 0.0);
+  EXPECT_EQ(p1.line, 8);
+
+  const GaugeSpec& p2 = spec.gauges[1];
+  EXPECT_EQ(p2.name, "P2");
+  EXPECT_EQ(p2.at, Eigen::Vector3d(0.1, 0.2, 0.0));
+  EXPECT_FALSE(p2.normal.has_value());
+  EXPECT_FALSE(p2.offset.has_value());
+  EXPECT_EQ(p2.line, 9);
+
+  const GaugeSpec& h1 = spec.gauges[2];
+  EXPECT_EQ(h1.name, "H1");
+  EXPECT_EQ(h1.kind, GaugeSpec::Kind::Height);
+  EXPECT_EQ(h1.at, Eigen::Vector3d(0.1, 0.0, 0.0));
+  EXPECT_DOUBLE_EQ(h1.every, 0.002);
+  EXPECT_EQ(h1.line, 10);
+
+  const GaugeSpec& v1 = spec.gauges[3];
+  EXPECT_EQ(v1.kind, GaugeSpec::Kind::Velocity);
+  EXPECT_EQ(v1.at, Eigen::Vector3d(0.1, 0.05, 0.0));
+  EXPECT_DOUBLE_EQ(v1.every, 0.0);
+  EXPECT_EQ(v1.line, 11);
+
+  const GaugeSpec& f1 = spec.gauges[4];
+  EXPECT_EQ(f1.name, "F_wall");
+  EXPECT_EQ(f1.kind, GaugeSpec::Kind::Force);
+  EXPECT_EQ(f1.body, "tank");
+  ASSERT_TRUE(f1.moment_about.has_value());
+  EXPECT_EQ(*f1.moment_about, Eigen::Vector3d(0.0, 0.5, 0.0));
+  EXPECT_EQ(f1.line, 12);
+  const GaugeSpec& f2 = spec.gauges[5];
+  EXPECT_EQ(f2.body, "tank");
+  EXPECT_FALSE(f2.moment_about.has_value());
+
+  const GaugeSpec& front = spec.gauges[6];
+  EXPECT_EQ(front.name, "front");
+  EXPECT_EQ(front.kind, GaugeSpec::Kind::Front);
+  ASSERT_TRUE(front.band.has_value());
+  EXPECT_DOUBLE_EQ(*front.band, 0.03);
+  EXPECT_EQ(front.line, 14);
+  const GaugeSpec& front2 = spec.gauges[7];
+  EXPECT_EQ(front2.name, "front-2");
+  EXPECT_FALSE(front2.band.has_value());
+  EXPECT_EQ(front2.line, 17);
+
+  // Keys a kind does not take keep their defaults.
+  for (const GaugeSpec& g : spec.gauges) {
+    if (g.kind != GaugeSpec::Kind::Force) {
+      EXPECT_TRUE(g.body.empty()) << g.name;
+      EXPECT_FALSE(g.moment_about.has_value()) << g.name;
+    }
+    if (g.kind != GaugeSpec::Kind::Front) {
+      EXPECT_FALSE(g.band.has_value()) << g.name;
+    }
+    if (g.kind == GaugeSpec::Kind::Force || g.kind == GaugeSpec::Kind::Front) {
+      EXPECT_EQ(g.at, Eigen::Vector3d::Zero()) << g.name;
+    }
+  }
+}
+
+TEST(CaseFileGauges, ParsesGaugesIn3d) {
+  const std::string text = R"(dim: 3
+dp: 0.02
+time: {end: 1}
+bodies:
+  - {name: tank, kind: boundary, shape: {box: {min: [0, 0, 0], max: [1, 1, 1]}}}
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0, 0], max: [0.5, 1, 0.5]}}}
+gauges:
+  - {name: P1, kind: pressure, at: [1, 0.5, 0.1], normal: [0, 0, 2], offset: 0}
+  - {name: H1, kind: height, at: [0.3, 0.5, 0]}
+  - {name: F1, kind: force, body: tank, moment_about: [1, 0.5, 0]}
+)";
+  const CaseSpec spec = parse_case_text(text, kLabel);
+  ASSERT_EQ(spec.gauges.size(), 3u);
+  EXPECT_EQ(spec.gauges[0].at, Eigen::Vector3d(1.0, 0.5, 0.1));
+  EXPECT_EQ(*spec.gauges[0].normal, Eigen::Vector3d(0.0, 0.0, 1.0));
+  EXPECT_DOUBLE_EQ(*spec.gauges[0].offset, 0.0);
+  EXPECT_EQ(spec.gauges[1].at, Eigen::Vector3d(0.3, 0.5, 0.0));
+  EXPECT_EQ(*spec.gauges[2].moment_about, Eigen::Vector3d(1.0, 0.5, 0.0));
+}
+
+TEST(CaseFileGauges, EmptyListMeansNoGauges) {
+  EXPECT_TRUE(parse_case_text(with_gauges("  []\n"), kLabel).gauges.empty());
+}
+
+TEST(CaseFileGaugeErrors, NotAListOrNotAMap) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  P1: {kind: pressure}\n"), 8,
+                              {"gauges: expected a list of gauges"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - P1\n"), 8, {"gauges[0]: expected a map", "'P1'"}));
+}
+
+TEST(CaseFileGaugeErrors, MissingName) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {kind: pressure, at: [0.1, 0.1]}\n"), 8,
+                              {"missing required key 'gauges[0].name'"}));
+}
+
+TEST(CaseFileGaugeErrors, InvalidName) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: 'P 1', kind: pressure, at: [0.1, 0.1]}\n"), 8,
+                              {"gauges[0].name", "letters, digits, '_' and '-'", "'P 1'"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: p/1, kind: velocity, at: [0.1, 0.1]}\n"), 8,
+                              {"gauges[0].name", "letters, digits"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: '', kind: front}\n"), 8,
+                              {"gauges[0].name", "non-empty"}));
+}
+
+TEST(CaseFileGaugeErrors, DuplicateName) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges(R"(  - {name: P1, kind: pressure, at: [0.1, 0.1]}
+  - {name: V1, kind: velocity, at: [0.1, 0.1]}
+  - name: P1
+    kind: height
+    at: [0.2, 0]
+)"),
+                              10, {"gauges[2].name", "duplicate gauge name 'P1'", "line 8"}));
+}
+
+TEST(CaseFileGaugeErrors, MissingOrUnknownKind) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: P1, at: [0.1, 0.1]}\n"), 8,
+                              {"missing required key 'gauges[0].kind'"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      with_gauges("  - {name: P1, kind: pressure, at: [0.1, 0.1]}\n"
+                  "  - name: P2\n    kind: presure\n    at: [0, 0]\n"),
+      10, {"gauges[1].kind", "'presure'", "pressure, height, velocity, force, front"}));
+}
+
+TEST(CaseFileGaugeErrors, MissingAt) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: P1, kind: pressure, normal: [0, 1]}\n"), 8,
+                              {"missing required key 'gauges[0].at'"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: H1, kind: height}\n"), 8,
+                              {"missing required key 'gauges[0].at'"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: V1, kind: velocity}\n"), 8,
+                              {"missing required key 'gauges[0].at'"}));
+}
+
+TEST(CaseFileGaugeErrors, WrongVectorLength) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: P1, kind: pressure, at: [0.1, 0.2, 0.3]}\n"),
+                              8,
+                              {"gauges[0].at", "expected a list of 2 numbers", "[0.1, 0.2, 0.3]"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges(R"(  - name: P1
+    kind: pressure
+    at: [0.1, 0.2]
+    normal: [1]
+)"),
+                              11, {"gauges[0].normal", "expected a list of 2 numbers"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 3
+dp: 0.02
+time: {end: 1}
+bodies:
+  - {name: tank, kind: boundary, shape: {box: {min: [0, 0, 0], max: [1, 1, 1]}}}
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0, 0], max: [0.5, 1, 0.5]}}}
+gauges:
+  - {name: F1, kind: force, body: tank, moment_about: [0, 0]}
+)",
+                              8, {"gauges[0].moment_about", "expected a list of 3 numbers"}));
+}
+
+TEST(CaseFileGaugeErrors, OffsetNeedsNormal) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges(R"(  - name: P1
+    kind: pressure
+    at: [0.1, 0.2]
+    offset: 0.01
+)"),
+                              11, {"gauges[0].offset", "only allowed together with 'normal'"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      with_gauges("  - {name: P1, kind: pressure, at: [0, 0.2], normal: [1, 0], offset: -0.01}\n"),
+      8, {"gauges[0].offset", "expected a number >= 0"}));
+}
+
+TEST(CaseFileGaugeErrors, ZeroNormal) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges(R"(  - name: P1
+    kind: pressure
+    at: [0.1, 0.2]
+    normal: [0, 0.0]
+)"),
+                              11, {"gauges[0].normal", "expected a non-zero vector", "[0, 0.0]"}));
+}
+
+TEST(CaseFileGaugeErrors, ForceGaugeNeedsABoundaryBody) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: V1, kind: velocity, at: [0, 0]}\n"
+                                          "  - {name: F1, kind: force, body: tnk}\n"),
+                              9,
+                              {"gauges[1].body", "force gauge 'F1' (line 9)", "no body named 'tnk'",
+                               "boundary bodies: tank"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges(R"(  - name: F1
+    kind: force
+    body: water
+)"),
+                              10,
+                              {"gauges[0].body", "force gauge 'F1' (line 8)",
+                               "body 'water' (line 6)", "kind fluid", "boundary bodies: tank"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: F1, kind: force}\n"), 8,
+                              {"missing required key 'gauges[0].body'"}));
+  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+dp: 0.01
+time: {end: 1}
+bodies:
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [1, 1]}}}
+gauges:
+  - {name: F1, kind: force, body: water}
+)",
+                              7,
+                              {"gauges[0].body", "kind fluid", "the case has no boundary bodies"}));
+}
+
+TEST(CaseFileGaugeErrors, KeyOfAnotherKind) {
+  EXPECT_TRUE(
+      ThrowsCaseError(with_gauges(R"(  - name: P1
+    kind: pressure
+    at: [0.1, 0.2]
+    body: tank
+)"),
+                      11,
+                      {"gauges[0].body", "pressure gauges take no 'body'", "kind force",
+                       "allowed keys in gauges[0] for kind pressure: name, kind, every, at, "
+                       "normal, offset"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      with_gauges("  - {name: F1, kind: force, body: tank, at: [0, 0]}\n"), 8,
+      {"gauges[0].at", "force gauges take no 'at'", "kinds pressure, height, velocity"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(with_gauges("  - {name: V1, kind: velocity, at: [0, 0], normal: [1, 0]}\n"),
+                      8, {"gauges[0].normal", "velocity gauges take no 'normal'"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: H1, kind: height, at: [0, 0], band: 0.1}\n"),
+                              8, {"gauges[0].band", "height gauges take no 'band'", "kind front"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(with_gauges("  - {name: H1, kind: height, at: [0, 0], colour: red}\n"), 8,
+                      {"unknown key 'gauges[0].colour'",
+                       "allowed keys in gauges[0] for kind height: name, kind, every, at"}));
+}
+
+TEST(CaseFileGaugeErrors, InvalidIntervalsAndBand) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: V1, kind: velocity, at: [0, 0], every: 0}\n"),
+                              8, {"gauges[0].every", "expected a number > 0"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: fr, kind: front, band: -0.1}\n"), 8,
+                              {"gauges[0].band", "expected a number > 0"}));
 }
 
 }  // namespace

@@ -1,0 +1,212 @@
+#include "apps/gauge_set.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+
+#include "solver/diagnostics.hpp"
+#include "solver/gauges.hpp"
+#include "solver/kernels.hpp"
+
+namespace swell {
+namespace {
+
+const char* kind_name(GaugeSpec::Kind k) {
+  switch (k) {
+    case GaugeSpec::Kind::Pressure:
+      return "pressure";
+    case GaugeSpec::Kind::Height:
+      return "height";
+    case GaugeSpec::Kind::Velocity:
+      return "velocity";
+    case GaugeSpec::Kind::Force:
+      return "force";
+    case GaugeSpec::Kind::Front:
+      return "front";
+  }
+  return "unknown";
+}
+
+const char* kind_comment(GaugeSpec::Kind k) {
+  switch (k) {
+    case GaugeSpec::Kind::Pressure:
+      return "pressure probes: Shepard-normalised kernel interpolation of fluid pressure [Pa]; "
+             "empty where not sampled, nan where dry";
+    case GaugeSpec::Kind::Height:
+      return "water height: free-surface elevation [m] where the kernel-interpolated density "
+             "along the vertical line falls below rho0/2";
+    case GaugeSpec::Kind::Velocity:
+      return "velocity probes: Shepard-normalised kernel interpolation of fluid velocity [m/s]";
+    case GaugeSpec::Kind::Force:
+      return "force and moment of the fluid on boundary bodies (2D: per metre of width)";
+    case GaugeSpec::Kind::Front:
+      return "surge front: largest x of fluid within the band above the floor, plus dp/2 [m]";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::vector<std::string> gauge_columns(const GaugeSpec& g, int dim) {
+  static const char* axes[] = {"x", "y", "z"};
+  std::vector<std::string> c;
+  switch (g.kind) {
+    case GaugeSpec::Kind::Pressure:
+      c.push_back(g.name + " [Pa]");
+      break;
+    case GaugeSpec::Kind::Height:
+    case GaugeSpec::Kind::Front:
+      c.push_back(g.name + " [m]");
+      break;
+    case GaugeSpec::Kind::Velocity:
+      for (int d = 0; d < dim; ++d) c.push_back(g.name + "_v" + axes[d] + " [m/s]");
+      break;
+    case GaugeSpec::Kind::Force: {
+      const std::string fu = dim == 2 ? " [N/m]" : " [N]", mu = dim == 2 ? " [N m/m]" : " [N m]";
+      for (int d = 0; d < dim; ++d) c.push_back(g.name + "_f" + axes[d] + fu);
+      if (dim == 2) {
+        c.push_back(g.name + "_mz" + mu);
+      } else {
+        for (int d = 0; d < 3; ++d) c.push_back(g.name + "_m" + axes[d] + mu);
+      }
+      break;
+    }
+  }
+  return c;
+}
+
+template <int D>
+std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
+                                   const ParticleSet<D>& ps, const std::vector<double>& pressure,
+                                   const std::vector<Vec<D>>& ace) {
+  const SolverParams& p = ctx.params;
+  const Vec<D> at = g.at.template head<D>();
+  return with_kernel<D>(p.kernel, p.h, [&](const auto& kernel) -> std::vector<double> {
+    switch (g.kind) {
+      case GaugeSpec::Kind::Pressure: {
+        Vec<D> x = at;
+        if (g.normal) x += (g.offset ? *g.offset : p.h) * Vec<D>(g.normal->template head<D>());
+        return {probe_pressure(ps, pressure, kernel, x)};
+      }
+      case GaugeSpec::Kind::Velocity: {
+        const Vec<D> v = probe_velocity(ps, kernel, at);
+        return std::vector<double>(v.data(), v.data() + D);
+      }
+      case GaugeSpec::Kind::Height:
+        return {water_height(ps, kernel, at, ctx.up_axis, ctx.line_top, 0.5 * p.dp, p.rho0)};
+      case GaugeSpec::Kind::Front: {
+        Vec<D> up = Vec<D>::Zero();
+        up[ctx.up_axis] = 1.0;
+        const double band = g.band ? *g.band : 2.0 * p.h;
+        const double f = surge_front(ps, up, ctx.floor, band, p.dp);
+        return {std::isfinite(f) ? f : std::numeric_limits<double>::quiet_NaN()};
+      }
+      case GaugeSpec::Kind::Force: {
+        if (ace.size() < ps.size())
+          throw std::invalid_argument("force gauge '" + g.name +
+                                      "' needs wall accelerations, "
+                                      "which only a running simulation has");
+        const auto it = ctx.body_ids.find(g.body);
+        if (it == ctx.body_ids.end())
+          throw std::invalid_argument("force gauge '" + g.name + "': no body '" + g.body + "'");
+        const Eigen::Vector3d about = g.moment_about ? *g.moment_about : Eigen::Vector3d::Zero();
+        const auto load = body_load(ps, ace, it->second, about);
+        std::vector<double> v(load.force.data(), load.force.data() + D);
+        if constexpr (D == 2) {
+          v.push_back(load.moment.z());
+        } else {
+          for (int d = 0; d < 3; ++d) v.push_back(load.moment[d]);
+        }
+        return v;
+      }
+    }
+    return {};
+  });
+}
+
+template <int D>
+GaugeSet<D>::GaugeSet(const std::vector<GaugeSpec>& gauges, double default_every, GaugeContext ctx,
+                      const std::string& out_dir, const std::string& case_name, double resume_after)
+    : ctx_(std::move(ctx)) {
+  std::map<GaugeSpec::Kind, std::vector<std::size_t>> by_kind;
+  for (std::size_t i = 0; i < gauges.size(); ++i) by_kind[gauges[i].kind].push_back(i);
+  gauges_.resize(gauges.size());
+  for (const auto& [kind, members] : by_kind) {
+    std::vector<std::string> columns;
+    const int file = static_cast<int>(files_.size());
+    for (std::size_t i : members) {
+      Entry& e = gauges_[i];
+      e.spec = gauges[i];
+      e.every = gauges[i].every > 0.0 ? gauges[i].every : default_every;
+      e.next = 0.0;
+      e.file = file;
+      e.first_column = columns.size();
+      for (auto& c : gauge_columns(gauges[i], D)) columns.push_back(c);
+    }
+    const std::string path =
+        (std::filesystem::path(out_dir) / (std::string("gauges_") + kind_name(kind) + ".csv"))
+            .string();
+    files_.push_back(std::make_unique<GaugeCsvFile>(
+        path, std::vector<std::string>{"swell gauges, case " + case_name, kind_comment(kind)},
+        columns, resume_after));
+    file_columns_.push_back(columns.size());
+  }
+}
+
+template <int D>
+bool GaugeSet<D>::due(double time) const {
+  for (const auto& e : gauges_)
+    if (time >= e.next - 1e-12) return true;
+  return false;
+}
+
+template <int D>
+void GaugeSet<D>::sample(double time, const ParticleSet<D>& ps, const std::vector<double>& pressure,
+                         const std::vector<Vec<D>>& ace) {
+  for (std::size_t f = 0; f < files_.size(); ++f) {
+    row_.assign(file_columns_[f], 0.0);
+    present_.assign(file_columns_[f], false);
+    bool any = false;
+    for (auto& e : gauges_) {
+      if (e.file != static_cast<int>(f) || time < e.next - 1e-12) continue;
+      const auto values = evaluate_gauge<D>(e.spec, ctx_, ps, pressure, ace);
+      for (std::size_t k = 0; k < values.size(); ++k) {
+        row_[e.first_column + k] = values[k];
+        present_[e.first_column + k] = true;
+      }
+      while (e.next <= time + 1e-12) e.next += e.every;
+      any = true;
+    }
+    if (any) files_[f]->write_row(time, row_, present_);
+  }
+}
+
+template <int D>
+void GaugeSet<D>::flush() {
+  for (auto& f : files_) f->flush();
+}
+
+template <int D>
+void GaugeSet<D>::save_schedule(std::map<std::string, double>& schedule) const {
+  for (const auto& e : gauges_) schedule["gauge." + e.spec.name] = e.next;
+}
+
+template <int D>
+void GaugeSet<D>::load_schedule(const std::map<std::string, double>& schedule) {
+  for (auto& e : gauges_) {
+    const auto it = schedule.find("gauge." + e.spec.name);
+    if (it != schedule.end()) e.next = it->second;
+  }
+}
+
+template class GaugeSet<2>;
+template class GaugeSet<3>;
+template std::vector<double> evaluate_gauge<2>(const GaugeSpec&, const GaugeContext&,
+                                               const ParticleSet<2>&, const std::vector<double>&,
+                                               const std::vector<Vec<2>>&);
+template std::vector<double> evaluate_gauge<3>(const GaugeSpec&, const GaugeContext&,
+                                               const ParticleSet<3>&, const std::vector<double>&,
+                                               const std::vector<Vec<3>>&);
+
+}  // namespace swell

@@ -1,0 +1,68 @@
+// The gauges of a case: evaluated between steps at their own intervals and written as one CSV
+// per gauge kind (gauges_<kind>.csv). evaluate_gauge() is shared with `swell probe`, which
+// evaluates the same gauges on saved snapshots.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/case_spec.hpp"
+#include "io/gauge_csv.hpp"
+#include "solver/particle_set.hpp"
+#include "solver/solver_params.hpp"
+
+namespace swell {
+
+// What a gauge needs to know about the run besides the particles.
+struct GaugeContext {
+  SolverParams params;
+  int up_axis = 1;        // vertical axis (y in 2D, z in 3D)
+  double floor = 0.0;     // lowest fluid level at the start (surge-front band origin)
+  double line_top = 0.0;  // top of the water-height measuring line
+  std::map<std::string, int> body_ids;
+};
+
+// Column names (with SI units) of one gauge, for a D-dimensional case.
+std::vector<std::string> gauge_columns(const GaugeSpec& g, int dim);
+
+// Values of one gauge, in the order of gauge_columns(). `ace` may be empty where no force
+// gauge is evaluated (post-processing).
+template <int D>
+std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
+                                   const ParticleSet<D>& ps, const std::vector<double>& pressure,
+                                   const std::vector<Vec<D>>& ace);
+
+template <int D>
+class GaugeSet {
+ public:
+  // resume_after >= 0: continue the CSV files of a restarted run after that time.
+  GaugeSet(const std::vector<GaugeSpec>& gauges, double default_every, GaugeContext ctx,
+           const std::string& out_dir, const std::string& case_name, double resume_after);
+
+  bool empty() const { return gauges_.empty(); }
+  bool due(double time) const;
+  // Samples every gauge whose time has come and writes one row per kind.
+  void sample(double time, const ParticleSet<D>& ps, const std::vector<double>& pressure,
+              const std::vector<Vec<D>>& ace);
+  void flush();
+  void save_schedule(std::map<std::string, double>& schedule) const;
+  void load_schedule(const std::map<std::string, double>& schedule);
+
+ private:
+  struct Entry {
+    GaugeSpec spec;
+    double every = 0.0, next = 0.0;
+    int file = 0;                  // index into files_
+    std::size_t first_column = 0;  // within that file's row
+  };
+  std::vector<Entry> gauges_;
+  std::vector<std::unique_ptr<GaugeCsvFile>> files_;
+  std::vector<std::size_t> file_columns_;
+  GaugeContext ctx_;
+  std::vector<double> row_;
+  std::vector<bool> present_;
+};
+
+}  // namespace swell

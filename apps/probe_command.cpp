@@ -1,0 +1,129 @@
+#include "apps/probe_command.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "apps/gauge_set.hpp"
+#include "io/hdf5_file.hpp"
+
+namespace swell {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string find_run_file(const std::string& dir) {
+  if (!fs::is_directory(dir))
+    throw std::invalid_argument(dir + ": not a folder (expected a run's output folder)");
+  std::string found;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (e.path().extension() != ".h5" || name.rfind("checkpoint", 0) == 0) continue;
+    if (!found.empty())
+      throw std::invalid_argument(dir + ": more than one run file (" + found + ", " + name + ")");
+    found = e.path().string();
+  }
+  if (found.empty())
+    throw std::invalid_argument(
+        dir + ": no <case>.h5 run file (was the run made with output.hdf5: false?)");
+  return found;
+}
+
+template <int D>
+int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadata& meta,
+              std::ostream& out) {
+  GaugeSpec g;
+  g.name = "probe";
+  g.at = opt.at;
+  if (opt.kind == "pressure") {
+    g.kind = GaugeSpec::Kind::Pressure;
+    if (opt.normal) g.normal = opt.normal->normalized();
+    g.offset = opt.offset;
+  } else if (opt.kind == "velocity") {
+    g.kind = GaugeSpec::Kind::Velocity;
+  } else if (opt.kind == "height") {
+    g.kind = GaugeSpec::Kind::Height;
+  } else {
+    throw std::invalid_argument("--kind " + opt.kind + ": expected pressure, velocity or height");
+  }
+  GaugeContext ctx;
+  ctx.params.kernel = kernel_from_name(meta.kernel);
+  ctx.params.h = meta.h;
+  ctx.params.dp = meta.dp;
+  ctx.params.rho0 = meta.rho0;
+  ctx.params.c0 = meta.c0;
+  ctx.up_axis = D - 1;
+
+  std::ostringstream csv;
+  csv << "# swell probe of " << path << " (case " << meta.case_name << ")\n";
+  csv << "time [s]";
+  for (const auto& c : gauge_columns(g, D)) csv << ',' << c;
+  csv << '\n';
+  int rows = 0;
+  const std::vector<Vec<D>> no_ace;
+  for (const auto& info : list_snapshots(path)) {
+    const SnapshotData<D> s = read_snapshot<D>(path, info);
+    ParticleSet<D> ps;
+    ps.reserve(s.pos.size());
+    double top = -1e300;
+    for (std::size_t i = 0; i < s.pos.size(); ++i) {
+      ps.add(s.pos[i], s.vel[i], s.rho[i], s.mass[i], s.type[i] ? Kind::Boundary : Kind::Fluid,
+             s.body[i]);
+      ps.id[i] = s.id[i];
+      top = std::max(top, s.pos[i][D - 1]);
+    }
+    ctx.line_top = top + 2.0 * meta.h;
+    const auto values = evaluate_gauge<D>(g, ctx, ps, s.p, no_ace);
+    char buf[40];
+    std::snprintf(buf, sizeof(buf), "%.9g", s.time);
+    csv << buf;
+    for (double v : values) {
+      std::snprintf(buf, sizeof(buf), "%.9g", v);
+      csv << ',' << buf;
+    }
+    csv << '\n';
+    ++rows;
+  }
+  if (opt.output.empty()) {
+    out << csv.str();
+  } else {
+    std::ofstream f(opt.output);
+    if (!(f << csv.str())) throw std::runtime_error("cannot write " + opt.output);
+  }
+  return rows;
+}
+
+}  // namespace
+
+Eigen::Vector3d parse_vector_option(const std::string& text, const std::string& option) {
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  std::stringstream ss(text);
+  std::string item;
+  int n = 0;
+  while (std::getline(ss, item, ',')) {
+    if (n == 3) throw std::invalid_argument(option + " " + text + ": expected x,y or x,y,z");
+    try {
+      std::size_t used = 0;
+      v[n] = std::stod(item, &used);
+      if (used != item.size()) throw std::invalid_argument("trailing characters");
+    } catch (const std::exception&) {
+      throw std::invalid_argument(option + " " + text + ": '" + item + "' is not a number");
+    }
+    ++n;
+  }
+  if (n < 2) throw std::invalid_argument(option + " " + text + ": expected x,y or x,y,z");
+  return v;
+}
+
+int run_probe(const ProbeOptions& opt, std::ostream& out) {
+  const std::string path = find_run_file(opt.out_dir);
+  const RunMetadata meta = read_metadata(path);
+  if (meta.dim == 2) return probe_dim<2>(opt, path, meta, out);
+  if (meta.dim == 3) return probe_dim<3>(opt, path, meta, out);
+  throw std::runtime_error(path + ": metadata dim must be 2 or 3");
+}
+
+}  // namespace swell

@@ -1,0 +1,312 @@
+// The time loop of `swell run`: steps the simulation and, between steps, writes snapshots
+// (VTK, HDF5), gauges, diagnostics and checkpoints on their own schedules; restarts from a
+// checkpoint; prints the progress line and the summary.
+#include <omp.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "apps/case_runner.hpp"
+#include "apps/gauge_set.hpp"
+#include "io/gauge_csv.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/vtk_writer.hpp"
+#include "solver/diagnostics.hpp"
+
+namespace swell {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--";
+  const long total = static_cast<long>(s + 0.5);
+  std::ostringstream o;
+  if (total >= 3600)
+    o << total / 3600 << ":" << std::setw(2) << std::setfill('0') << (total / 60) % 60;
+  else
+    o << total / 60;
+  o << ":" << std::setw(2) << std::setfill('0') << total % 60;
+  return o.str();
+}
+
+// A repeating event at a fixed simulated-time interval. Fires at the first step reaching it;
+// dt is never cut to hit it exactly (as DualSPHysics), so series times are step times.
+struct Timer {
+  double every = 0.0, next = 0.0;
+  bool due(double t) const { return every > 0.0 && t >= next - 1e-12; }
+  void advance(double t) {
+    while (next <= t + 1e-12) next += every;
+  }
+};
+
+template <int D>
+RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const RunSummary& sum) {
+  RunMetadata m;
+  m.case_name = spec.name;
+  m.case_file = spec.file;
+  m.case_text = spec.text;
+  m.version = "0.1.0";
+  m.dim = D;
+  m.dp = spec.dp;
+  m.h = setup.params.h;
+  m.c0 = setup.params.c0;
+  m.rho0 = setup.params.rho0;
+  m.kernel = spec.kernel;
+  m.n_fluid = sum.fluid;
+  m.n_boundary = sum.boundary;
+  for (const auto& b : setup.bodies) m.body_names.push_back(b.name);
+  return m;
+}
+
+template <int D>
+RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
+  std::ostream& log = opt.log ? *opt.log : std::cout;
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  const std::string out_dir = opt.out_dir.empty() ? "out/" + spec.name : opt.out_dir;
+  const fs::path out(out_dir);
+  if (opt.restart && !fs::exists(out / "checkpoint.h5") && !fs::exists(out / "checkpoint.h5.prev"))
+    throw std::invalid_argument("cannot restart: no checkpoint in " + out_dir +
+                                " (expected checkpoint.h5 written by an earlier swell run)");
+  fs::create_directories(out / "vtk");
+
+  const auto wall0 = std::chrono::steady_clock::now();
+  CaseSetup<D> setup = setup_case<D>(spec);
+  RunSummary sum;
+  for (const auto& b : setup.bodies) (b.fluid ? sum.fluid : sum.boundary) += b.particles;
+  const std::size_t n_total = sum.fluid + sum.boundary;
+
+  log << "case " << spec.name << " (" << spec.file << "): " << D << "D, dp = " << spec.dp
+      << " m, h = " << setup.params.h << " m, c0 = " << setup.params.c0 << " m/s, "
+      << omp_get_max_threads() << " thread(s)\n";
+  for (const auto& b : setup.bodies)
+    log << "  body " << b.name << " (" << (b.fluid ? "fluid" : "boundary") << "): " << b.particles
+        << " particles\n";
+  log << "  total: " << n_total << " particles (" << sum.fluid << " fluid, " << sum.boundary
+      << " boundary)\n";
+
+  // Gauge context, before the particles move into the simulation.
+  GaugeContext gctx;
+  gctx.params = setup.params;
+  gctx.up_axis = D - 1;
+  gctx.floor = setup.floor;
+  gctx.line_top = setup.params.domain_max[D - 1];
+  for (std::size_t b = 0; b < setup.bodies.size(); ++b)
+    gctx.body_ids[setup.bodies[b].name] = static_cast<int>(b);
+  const RunMetadata meta = make_metadata(spec, setup, sum);
+
+  // Fresh start or continuation from the last valid checkpoint.
+  std::map<std::string, double> schedule;
+  std::optional<Simulation<D>> sim;
+  double resume_after = -1.0;
+  const std::string ck_path = (out / "checkpoint.h5").string();
+  if (opt.restart) {
+    const std::string ck = latest_valid_checkpoint(ck_path);
+    if (checkpoint_dimension(ck) != D)
+      throw std::invalid_argument(ck + " holds a " + std::to_string(checkpoint_dimension(ck)) +
+                                  "D run, but " + spec.file + " is " + std::to_string(D) + "D");
+    Checkpoint<D> c = read_checkpoint<D>(ck);
+    if (c.particles.total() != n_total)
+      throw std::invalid_argument(ck + " holds " + std::to_string(c.particles.total()) +
+                                  " particles but " + spec.file + " makes " +
+                                  std::to_string(n_total) +
+                                  ": restart needs the case the run was started with");
+    sim.emplace(setup.params, std::move(c.particles));
+    sim->restore(c.clock);
+    schedule = c.schedule;
+    resume_after = c.clock.time;
+    sum.restarted_from = c.clock.time;
+    log << "  restart from " << ck << " at t = " << c.clock.time << " s, step " << c.clock.steps
+        << "\n";
+  } else {
+    sim.emplace(setup.params, std::move(setup.particles));
+  }
+
+  const double t_end = spec.t_end;
+  const double every = spec.output_every > 0.0 ? spec.output_every : t_end;
+  Timer out_timer{every, 0.0}, diag_timer{every / 10.0, 0.0},
+      ck_timer{spec.checkpoint_every > 0.0 ? spec.checkpoint_every : every, every};
+  const double gauge_every = spec.gauge_every > 0.0 ? spec.gauge_every : every / 10.0;
+  int snapshot = 0;
+  if (opt.restart) {
+    out_timer.next = schedule.at("next_output");
+    diag_timer.next = schedule.at("next_diagnostics");
+    ck_timer.next = schedule.at("next_checkpoint");
+    snapshot = static_cast<int>(schedule.at("snapshot"));
+  }
+
+  // Outputs (continued after the checkpoint time on restart).
+  PvdSeries pvd((out / (spec.name + ".pvd")).string());
+  PvdSeries pvd_fluid((out / (spec.name + "_fluid.pvd")).string());
+  PvdSeries pvd_bound((out / (spec.name + "_boundary.pvd")).string());
+  if (opt.restart) {
+    pvd.resume(resume_after);
+    pvd_fluid.resume(resume_after);
+    pvd_bound.resume(resume_after);
+  }
+  std::optional<Hdf5RunFile> h5;
+  const std::string h5_path = (out / (spec.name + ".h5")).string();
+  if (spec.hdf5) {
+    if (opt.restart) {
+      bool recreated = false;
+      h5.emplace(Hdf5RunFile::open_for_append(h5_path, meta, resume_after, &recreated));
+      if (recreated)
+        log << "  warning: " << h5_path << " was unreadable; kept as .corrupt, started anew\n";
+    } else {
+      h5.emplace(Hdf5RunFile::create(h5_path, meta));
+    }
+  }
+  const Vec<D> up = Vec<D>::Unit(D - 1);
+  const double band = 2.0 * setup.params.h;
+  GaugeCsvFile diag((out / "diagnostics.csv").string(),
+                    {"swell diagnostics, case " + spec.name, "front = largest x of fluid within " +
+                                                                 std::to_string(band) +
+                                                                 " m above the floor, plus dp/2"},
+                    {"steps", "dt [s]", "fluid particles", "fluid mass [kg]", "kinetic energy [J]",
+                     "max speed [m/s]", "front x [m]"},
+                    resume_after);
+  GaugeSet<D> gauges(spec.gauges, gauge_every, gctx, out_dir, spec.name, resume_after);
+  gauges.load_schedule(schedule);
+
+  auto write_snapshot = [&]() {
+    const double t0 = omp_get_wtime();
+    const auto& p = sim->pressure();
+    char num[32];
+    std::snprintf(num, sizeof(num), "_%04d.vtp", snapshot);
+    if (spec.vtk) {
+      const std::string rel = "vtk/" + spec.name + num;
+      write_vtp<D>((out / rel).string(), sim->particles(), p);
+      pvd.add(sim->time(), rel);
+      if (spec.vtk_split) {
+        const std::string rf = "vtk/" + spec.name + "_fluid" + num,
+                          rb = "vtk/" + spec.name + "_boundary" + num;
+        write_vtp<D>((out / rf).string(), sim->particles(), p, ParticleFilter::Fluid);
+        write_vtp<D>((out / rb).string(), sim->particles(), p, ParticleFilter::Boundary);
+        pvd_fluid.add(sim->time(), rf);
+        pvd_bound.add(sim->time(), rb);
+      }
+    }
+    if (h5) h5->write_snapshot<D>(sim->steps(), sim->time(), sim->particles(), p);
+    ++snapshot;
+    ++sum.snapshots;
+    sum.output_seconds += omp_get_wtime() - t0;
+  };
+  auto write_diag = [&]() {
+    const auto tot = fluid_totals(sim->particles());
+    diag.write_row(
+        sim->time(),
+        {double(sim->steps()), sim->dt(), double(tot.count), tot.mass, tot.kinetic_energy,
+         tot.max_speed, surge_front(sim->particles(), up, setup.floor, band, spec.dp)},
+        std::vector<bool>(7, true));
+  };
+  auto write_checkpoint_now = [&]() {
+    const double t0 = omp_get_wtime();
+    std::map<std::string, double> s;
+    s["next_output"] = out_timer.next;
+    s["next_diagnostics"] = diag_timer.next;
+    s["next_checkpoint"] = ck_timer.next;
+    s["snapshot"] = snapshot;
+    gauges.save_schedule(s);
+    diag.flush();
+    gauges.flush();
+    write_checkpoint<D>(ck_path, sim->particles(), sim->clock(), s);
+    sum.output_seconds += omp_get_wtime() - t0;
+  };
+  // Everything due at the current time, in a fixed order.
+  auto outputs = [&](bool final_state) {
+    const double t = sim->time();
+    if (diag_timer.due(t)) {
+      write_diag();
+      diag_timer.advance(t);
+    }
+    if (gauges.due(t)) gauges.sample(t, sim->particles(), sim->pressure(), sim->acceleration());
+    if (out_timer.due(t) || (final_state && out_timer.next > t + 1e-12 && snapshot > 0)) {
+      write_snapshot();
+      out_timer.advance(t);
+    }
+    if (ck_timer.due(t) || final_state) {
+      if (ck_timer.due(t)) ck_timer.advance(t);
+      write_checkpoint_now();
+    }
+  };
+  if (!opt.restart) outputs(false);
+
+  const bool tty = isatty(fileno(stderr));
+  const auto loop0 = std::chrono::steady_clock::now();
+  auto last_progress = loop0;
+  const long step0 = sim->steps();
+  const double time0 = sim->time();
+  while (sim->time() < t_end) {
+    sim->step();
+    outputs(sim->time() >= t_end);
+    const auto now = std::chrono::steady_clock::now();
+    if (opt.progress && (now - last_progress > std::chrono::seconds(2) || sim->time() >= t_end)) {
+      last_progress = now;
+      const double el = std::chrono::duration<double>(now - loop0).count();
+      const double rate = static_cast<double>(sim->steps() - step0) * n_total / std::max(el, 1e-9);
+      const double eta = el / (sim->time() - time0) * (t_end - sim->time());
+      std::fprintf(
+          stderr, "%st = %.4f / %.4f s | step %ld | dt %.3e s | %.2f M particle-steps/s | ETA %s%s",
+          tty ? "\r" : "", sim->time(), t_end, sim->steps(), sim->dt(), rate / 1e6,
+          format_duration(eta).c_str(), tty ? "   " : "\n");
+      std::fflush(stderr);
+    }
+  }
+  if (opt.progress && tty) std::fprintf(stderr, "\n");
+  diag.flush();
+  gauges.flush();
+
+  const auto wall1 = std::chrono::steady_clock::now();
+  const double loop_s = std::chrono::duration<double>(wall1 - loop0).count();
+  sum.wall_seconds = std::chrono::duration<double>(wall1 - wall0).count();
+  sum.steps = sim->steps();
+  sum.sim_time = sim->time();
+  const long loop_steps = sim->steps() - step0;
+  sum.particle_steps_per_second =
+      static_cast<double>(n_total) * loop_steps / std::max(loop_s, 1e-9);
+  sum.excluded = sim->excluded();
+  sum.phases = sim->phase_times();
+
+  std::ostringstream s;
+  s << std::setprecision(4);
+  s << "run summary: " << spec.name << "\n"
+    << "  particles:      " << n_total << " (" << sum.fluid << " fluid, " << sum.boundary
+    << " boundary)\n"
+    << "  simulated time: " << sum.sim_time << " s in " << sum.steps << " steps"
+    << (opt.restart ? " (restarted at t = " + std::to_string(resume_after) + " s)" : std::string())
+    << "\n"
+    << "  wall time:      " << sum.wall_seconds << " s (time loop " << loop_s << " s, "
+    << omp_get_max_threads() << " thread(s))\n"
+    << "  speed:          " << sum.particle_steps_per_second / 1e6 << " M particle-steps/s, "
+    << loop_steps / std::max(loop_s, 1e-9) << " steps/s\n"
+    << "  phases:         neighbours " << sum.phases.neighbour << " s, interaction "
+    << sum.phases.interaction << " s, integration " << sum.phases.integration << " s, output "
+    << sum.output_seconds << " s\n"
+    << "  excluded:       " << sum.excluded.total() << " (out of domain "
+    << sum.excluded.out_of_domain << ", non-finite " << sum.excluded.non_finite
+    << ", density out of range " << sum.excluded.density_out_of_range << ")\n"
+    << "  output:         " << out_dir << " (" << sum.snapshots << " snapshots, " << pvd.path()
+    << ")\n";
+  log << s.str();
+  std::ofstream(out / "run_summary.txt") << s.str();
+  return sum;
+}
+
+}  // namespace
+
+RunSummary run_case(const CaseSpec& spec, const RunOptions& options) {
+  if (spec.dim == 2) return run_dim<2>(spec, options);
+  if (spec.dim == 3) return run_dim<3>(spec, options);
+  throw std::invalid_argument(spec.file + ": dim must be 2 or 3");
+}
+
+}  // namespace swell

@@ -1,0 +1,204 @@
+// Parsing of the top-level `gauges:` list of a case file into GaugeSpec (io/case_spec.hpp).
+//
+// Every gauge takes name, kind and every; the other keys depend on the kind, in the way the keys
+// under physics.viscosity depend on the model. A key that belongs to another kind is reported as
+// such ("force gauges take no 'at'"), anything else as an unknown key.
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/case_parse_util.hpp"
+
+namespace swell::case_parse {
+
+namespace {
+
+struct GaugeKindInfo {
+  std::string_view name;
+  GaugeSpec::Kind kind;
+  Names keys;  // besides kCommonKeys
+};
+
+const Names kCommonKeys = {"name", "kind", "every"};
+
+const std::vector<GaugeKindInfo>& gauge_kinds() {
+  static const std::vector<GaugeKindInfo> kinds = {
+      {"pressure", GaugeSpec::Kind::Pressure, {"at", "normal", "offset"}},
+      {"height", GaugeSpec::Kind::Height, {"at"}},
+      {"velocity", GaugeSpec::Kind::Velocity, {"at"}},
+      {"force", GaugeSpec::Kind::Force, {"body", "moment_about"}},
+      {"front", GaugeSpec::Kind::Front, {"band"}},
+  };
+  return kinds;
+}
+
+bool is_name_char(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '-';
+}
+
+class GaugeReader : private NodeReader {
+ public:
+  GaugeReader(const NodeReader& base, const std::vector<BodySpec>& bodies)
+      : NodeReader(base), bodies_(bodies) {}
+
+  std::vector<GaugeSpec> read_list(const YAML::Node& node, const std::string& path) const;
+
+ private:
+  GaugeSpec read_gauge(const YAML::Node& node, const std::string& path) const;
+  const GaugeKindInfo& read_kind(const YAML::Node& node, const std::string& path) const;
+  void check_gauge_keys(const YAML::Node& node, const std::string& path,
+                        const GaugeKindInfo& kind) const;
+  std::string gauge_name(const YAML::Node& node, const std::string& path) const;
+  void read_pressure(const YAML::Node& node, const std::string& path, GaugeSpec& gauge) const;
+  void read_force(const YAML::Node& node, const std::string& path, GaugeSpec& gauge) const;
+
+  const std::vector<BodySpec>& bodies_;
+};
+
+std::vector<GaugeSpec> GaugeReader::read_list(const YAML::Node& node,
+                                              const std::string& path) const {
+  expect(node.IsSequence(), node, path,
+         "a list of gauges, each a map such as {name: P1, kind: pressure, at: [...]}");
+  std::vector<GaugeSpec> gauges;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const YAML::Node gauge_node = node[i];
+    GaugeSpec gauge = read_gauge(gauge_node, item(path, i));
+    for (const GaugeSpec& other : gauges) {
+      if (other.name != gauge.name) continue;
+      fail(gauge_node["name"], item(path, i) + ".name: duplicate gauge name '" + gauge.name +
+                                   "' (first used on line " + std::to_string(other.line) + ")");
+    }
+    gauges.push_back(std::move(gauge));
+  }
+  return gauges;
+}
+
+GaugeSpec GaugeReader::read_gauge(const YAML::Node& node, const std::string& path) const {
+  expect(node.IsMap(), node, path, "a map such as {name: P1, kind: pressure, at: [...]}");
+  GaugeSpec gauge;
+  gauge.line = line_of(node);
+  const GaugeKindInfo& kind = read_kind(node, path);
+  gauge.kind = kind.kind;
+  check_gauge_keys(node, path, kind);
+  gauge.name = gauge_name(require(node, path, "name"), child(path, "name"));
+  const auto positive = [](double v) { return v > 0.0; };
+  if (auto v = find(node, "every")) {
+    gauge.every = number_if(*v, child(path, "every"), positive, "a number > 0");
+  }
+  switch (gauge.kind) {
+    case GaugeSpec::Kind::Pressure:
+      read_pressure(node, path, gauge);
+      break;
+    case GaugeSpec::Kind::Height:  // `at` on the floor: the vertical line starts there
+    case GaugeSpec::Kind::Velocity:
+      gauge.at = vector(require(node, path, "at"), child(path, "at"));
+      break;
+    case GaugeSpec::Kind::Force:
+      read_force(node, path, gauge);
+      break;
+    case GaugeSpec::Kind::Front:
+      if (auto v = find(node, "band")) {
+        gauge.band = number_if(*v, child(path, "band"), positive, "a number > 0");
+      }
+      break;
+  }
+  return gauge;
+}
+
+const GaugeKindInfo& GaugeReader::read_kind(const YAML::Node& node, const std::string& path) const {
+  Names names;
+  for (const GaugeKindInfo& info : gauge_kinds()) names.push_back(info.name);
+  const std::string kind = choice(require(node, path, "kind"), child(path, "kind"), names);
+  const auto& kinds = gauge_kinds();
+  return *std::find_if(kinds.begin(), kinds.end(),
+                       [&](const GaugeKindInfo& info) { return info.name == kind; });
+}
+
+void GaugeReader::check_gauge_keys(const YAML::Node& node, const std::string& path,
+                                   const GaugeKindInfo& kind) const {
+  Names allowed = kCommonKeys;
+  allowed.insert(allowed.end(), kind.keys.begin(), kind.keys.end());
+  const std::string context = " for kind " + std::string(kind.name);
+  for (const auto& entry : node) {
+    if (!entry.first.IsScalar()) continue;  // reported by check_keys below
+    const std::string& key = entry.first.Scalar();
+    if (contains(allowed, key)) continue;
+    Names owners;
+    for (const GaugeKindInfo& other : gauge_kinds()) {
+      if (contains(other.keys, key)) owners.push_back(other.name);
+    }
+    if (owners.empty()) continue;  // an unknown key, reported by check_keys below
+    fail(entry.first, child(path, key) + ": " + std::string(kind.name) + " gauges take no '" + key +
+                          "' (it belongs to kind" + (owners.size() > 1 ? "s " : " ") +
+                          join(owners) + "); allowed keys in " + path + context + ": " +
+                          join(allowed));
+  }
+  check_keys(node, path, allowed, context);
+}
+
+std::string GaugeReader::gauge_name(const YAML::Node& node, const std::string& path) const {
+  const std::string value = text(node, path);
+  const bool ok = !value.empty() && std::all_of(value.begin(), value.end(), is_name_char);
+  // The name becomes a CSV column and file name, hence the restricted characters.
+  expect(ok, node, path, "a non-empty name of letters, digits, '_' and '-'");
+  return value;
+}
+
+void GaugeReader::read_pressure(const YAML::Node& node, const std::string& path,
+                                GaugeSpec& gauge) const {
+  gauge.at = vector(require(node, path, "at"), child(path, "at"));
+  if (auto v = find(node, "normal")) {
+    const Eigen::Vector3d normal = vector(*v, child(path, "normal"));
+    const double length = normal.norm();
+    expect(length > 0.0, *v, child(path, "normal"), "a non-zero vector");
+    gauge.normal = normal / length;
+  }
+  if (auto v = find(node, "offset")) {
+    if (!gauge.normal) {
+      fail(*v, child(path, "offset") +
+                   ": 'offset' is only allowed together with 'normal' (the probe point is moved "
+                   "by offset along the normal)");
+    }
+    gauge.offset = number_if(
+        *v, child(path, "offset"), [](double o) { return o >= 0.0; }, "a number >= 0");
+  }
+}
+
+void GaugeReader::read_force(const YAML::Node& node, const std::string& path,
+                             GaugeSpec& gauge) const {
+  const YAML::Node body_node = require(node, path, "body");
+  gauge.body = name(body_node, child(path, "body"));
+  Names boundaries;
+  const BodySpec* found = nullptr;
+  for (const BodySpec& body : bodies_) {
+    if (body.kind == BodySpec::Kind::Boundary) boundaries.push_back(body.name);
+    if (body.name == gauge.body) found = &body;
+  }
+  if (!found || found->kind != BodySpec::Kind::Boundary) {
+    const std::string problem =
+        found ? "body '" + gauge.body + "' (line " + std::to_string(found->line) +
+                    ") has kind fluid, but a force gauge needs a boundary body"
+              : "there is no body named '" + gauge.body + "'";
+    const std::string choices = boundaries.empty() ? "the case has no boundary bodies"
+                                                   : "boundary bodies: " + join(boundaries);
+    fail(body_node, child(path, "body") + ": force gauge '" + gauge.name + "' (line " +
+                        std::to_string(gauge.line) + "): " + problem + "; " + choices);
+  }
+  if (auto v = find(node, "moment_about")) {
+    gauge.moment_about = vector(*v, child(path, "moment_about"));
+  }
+}
+
+}  // namespace
+
+std::vector<GaugeSpec> read_gauges(const NodeReader& reader, const YAML::Node& node,
+                                   const std::string& path, const std::vector<BodySpec>& bodies) {
+  return GaugeReader(reader, bodies).read_list(node, path);
+}
+
+}  // namespace swell::case_parse

@@ -1,0 +1,31 @@
+// Gauge series as CSV: one file per gauge kind, a time column and one column per gauge
+// quantity, SI units in the header. A resumed (restarted) run keeps the rows up to the
+// checkpoint time and appends after them, so the file reads as if the run never stopped.
+#pragma once
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace swell {
+
+class GaugeCsvFile {
+ public:
+  // Creates `path` with `comment` lines (written as "# ...") and the column header
+  // "time [s],<columns...>". With `resume_after` >= 0 an existing file is kept up to that
+  // time instead (rows with a later time are dropped) and the header is not rewritten.
+  GaugeCsvFile(const std::string& path, const std::vector<std::string>& comment,
+               const std::vector<std::string>& columns, double resume_after = -1.0);
+
+  // One row; a column whose `present` flag is false (gauge not due at this time) stays empty.
+  void write_row(double time, const std::vector<double>& values, const std::vector<bool>& present);
+  void flush() { out_.flush(); }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::ofstream out_;
+  std::size_t columns_ = 0;
+};
+
+}  // namespace swell

@@ -1,0 +1,473 @@
+#include "io/hdf5_file.hpp"
+
+#include <fcntl.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <type_traits>
+
+#include "io/hdf5_objects.hpp"
+
+namespace swell {
+namespace {
+
+using namespace hdf5;
+namespace fs = std::filesystem;
+
+static_assert(std::is_same_v<hid_t, std::int64_t>, "Hdf5RunFile keeps its hid_t in an int64_t");
+static_assert(std::is_same_v<long, std::int64_t> && std::is_same_v<std::size_t, std::uint64_t>,
+              "steps (long) and counts (size_t) are stored as 64-bit integers");
+
+// Snapshot times within this of t_keep are kept by open_for_append.
+constexpr double kTimeSlack = 1e-12;
+
+std::string snapshot_name(long step) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%010ld", step);
+  return buf;
+}
+
+// Every attribute of /metadata, listed once for writing and reading.
+template <class M, class Fn>
+void metadata_fields(M& m, Fn&& fn) {
+  fn("case_name", m.case_name);
+  fn("case_file", m.case_file);
+  fn("version", m.version);
+  fn("kernel", m.kernel);
+  fn("dim", m.dim);
+  fn("dp", m.dp);
+  fn("h", m.h);
+  fn("c0", m.c0);
+  fn("rho0", m.rho0);
+  fn("n_fluid", m.n_fluid);
+  fn("n_boundary", m.n_boundary);
+  fn("body_names", m.body_names);
+}
+
+// Every SimulationClock field, as attributes of /clock in a checkpoint.
+template <class C, class Fn>
+void clock_fields(C& c, Fn&& fn) {
+  fn("time", c.time);
+  fn("steps", c.steps);
+  fn("dt", c.dt);
+  fn("first_dt", c.first_dt);
+  fn("verlet_counter", c.verlet_counter);
+  fn("excluded_out_of_domain", c.excluded.out_of_domain);
+  fn("excluded_non_finite", c.excluded.non_finite);
+  fn("excluded_density_out_of_range", c.excluded.density_out_of_range);
+}
+
+// Every ParticleSet array, as datasets of /particles in a checkpoint (cf. for_each_array).
+template <class PS, class Fn>
+void checkpoint_arrays(PS& ps, Fn&& fn) {
+  fn("pos", ps.pos);
+  fn("vel", ps.vel);
+  fn("rho", ps.rho);
+  fn("pos0", ps.pos0);
+  fn("vel0", ps.vel0);
+  fn("rho0", ps.rho0);
+  fn("mass", ps.mass);
+  fn("kind", ps.kind);
+  fn("body", ps.body);
+  fn("id", ps.id);
+}
+
+void write_metadata(const Loc& root, const RunMetadata& m) {
+  Handle g = create_group(root, "metadata");
+  const Loc meta = root.at(g.get(), "metadata");
+  metadata_fields(m, [&](const char* name, const auto& v) { write_field(meta, name, v); });
+  // A dataset, not an attribute: case files can exceed the 64 KiB attribute limit.
+  write_strings(meta, "case_text", {m.case_text}, true, true);
+}
+
+RunMetadata read_metadata_group(const Loc& root) {
+  Handle g = open_group(root, "metadata");
+  const Loc meta = root.at(g.get(), "metadata");
+  RunMetadata m;
+  metadata_fields(m, [&](const char* name, auto& v) { read_field(meta, name, v); });
+  const auto text = read_strings(meta, "case_text", true);
+  if (text.size() != 1) fail(root.file, meta.dataset("case_text"), "is not a single string");
+  m.case_text = text[0];
+  return m;
+}
+
+// Deletes the snapshots later than t_keep and those a crash left without their attributes.
+void prune_snapshots(const Loc& root, double t_keep) {
+  Handle pg = open_group(root, "particles");
+  const Loc particles = root.at(pg.get(), "particles");
+  for (const auto& name : child_names(particles)) {
+    bool keep = false;
+    {
+      Handle g(H5Gopen2(particles.id, name.c_str(), H5P_DEFAULT), H5Gclose);
+      if (g.valid()) {
+        const Loc snap = particles.at(g.get(), name);
+        if (has_attr(snap, "time") && has_attr(snap, "step"))
+          keep = read_attr<double>(snap, "time") <= t_keep + kTimeSlack;
+      }
+    }
+    if (!keep && H5Ldelete(particles.id, name.c_str(), H5P_DEFAULT) < 0)
+      fail_h5(root.file, "group '" + particles.child(name) + "'", "cannot be deleted");
+  }
+}
+
+void rename_or_fail(const std::string& from, const std::string& to) {
+  std::error_code ec;
+  fs::rename(from, to, ec);
+  if (ec) throw std::runtime_error("cannot rename '" + from + "' to '" + to + "': " + ec.message());
+}
+
+// Forces a file's (or a folder's) contents to disk.
+void sync_path(const std::string& path, bool directory) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | (directory ? O_DIRECTORY : 0));
+  if (fd < 0) throw std::runtime_error("cannot open '" + path + "' to sync it: " + strerror(errno));
+  const int rc = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  // Some file systems cannot sync a folder (EINVAL); the rename is then as durable as they allow.
+  if (rc != 0 && !(directory && err == EINVAL))
+    throw std::runtime_error("cannot sync '" + path + "' to disk: " + strerror(err));
+}
+
+bool checkpoint_is_complete(const std::string& path) {
+  Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!f.valid()) return false;
+  const Loc root{f.get(), path, "/"};
+  try {
+    return has_attr(root, "complete") && read_attr<std::int32_t>(root, "complete") == 1;
+  } catch (const std::runtime_error&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+// ---- Run file -----------------------------------------------------------------------------
+
+Hdf5RunFile Hdf5RunFile::create(const std::string& path, const RunMetadata& meta) {
+  QuietErrors quiet;
+  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (!f.valid()) fail_h5(path, "", "cannot be created");
+  const Loc root{f.get(), path, "/"};
+  write_metadata(root, meta);
+  create_group(root, "particles");
+  if (H5Fflush(f.get(), H5F_SCOPE_LOCAL) < 0) fail_h5(path, "", "cannot be flushed");
+  return Hdf5RunFile(path, f.release());
+}
+
+Hdf5RunFile Hdf5RunFile::open_for_append(const std::string& path, const RunMetadata& meta,
+                                         double t_keep, bool* recreated) {
+  QuietErrors quiet;
+  if (recreated) *recreated = false;
+  bool usable = file_exists(path);
+  if (usable && ::access(path.c_str(), R_OK | W_OK) != 0)
+    fail(path, "", std::string("cannot be reopened for writing: ") + strerror(errno));
+  Handle f(usable ? H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT) : -1, H5Fclose);
+  if (usable && !f.valid()) {
+    const std::string reason = hdf5_reason();
+    // A file locked by a running writer is not corrupt: do not move it away.
+    if (reason.find("lock") != std::string::npos)
+      fail(path, "", "is locked, probably by a run still writing it (HDF5: " + reason + ")");
+    usable = false;
+  }
+  const Loc root{f.get(), path, "/"};
+  int stored_dim = 0;
+  if (usable) {
+    try {
+      Handle g = open_group(root, "metadata");
+      stored_dim = read_attr<std::int32_t>(root.at(g.get(), "metadata"), "dim");
+    } catch (const std::runtime_error&) {
+      usable = false;
+    }
+  }
+  if (usable && stored_dim != meta.dim) {
+    fail(path, "",
+         "holds a " + std::to_string(stored_dim) + "D run; cannot append " +
+             std::to_string(meta.dim) + "D snapshots");
+  }
+  if (usable) {
+    try {
+      prune_snapshots(root, t_keep);
+      if (H5Fflush(f.get(), H5F_SCOPE_LOCAL) < 0) fail_h5(path, "", "cannot be flushed");
+      return Hdf5RunFile(path, f.release());
+    } catch (const std::runtime_error&) {
+      usable = false;
+    }
+  }
+  f.reset();
+  if (file_exists(path)) rename_or_fail(path, path + ".corrupt");
+  if (recreated) *recreated = true;
+  return create(path, meta);
+}
+
+Hdf5RunFile::Hdf5RunFile(Hdf5RunFile&& other) noexcept
+    : path_(std::move(other.path_)), file_(std::exchange(other.file_, -1)) {}
+
+Hdf5RunFile& Hdf5RunFile::operator=(Hdf5RunFile&& other) noexcept {
+  if (this != &other) {
+    Hdf5RunFile old(std::move(*this));  // closes the current file on scope exit
+    path_ = std::move(other.path_);
+    file_ = std::exchange(other.file_, -1);
+  }
+  return *this;
+}
+
+Hdf5RunFile::~Hdf5RunFile() {
+  if (file_ < 0) return;
+  QuietErrors quiet;
+  H5Fclose(file_);
+}
+
+void Hdf5RunFile::close() {
+  if (file_ < 0) return;
+  QuietErrors quiet;
+  if (H5Fclose(std::exchange(file_, -1)) < 0) fail_h5(path_, "", "cannot be closed");
+}
+
+template <int D>
+void Hdf5RunFile::write_snapshot(long step, double time, const ParticleSet<D>& ps,
+                                 const std::vector<double>& pressure) {
+  QuietErrors quiet;
+  if (file_ < 0) fail(path_, "", "write_snapshot on a closed file");
+  const std::size_t n = ps.size();
+  const std::string name = snapshot_name(step);
+  const Loc root{file_, path_, "/"};
+  Handle pg = open_group(root, "particles");
+  const Loc particles = root.at(pg.get(), "particles");
+  if (pressure.size() < n) {
+    fail(path_, "group '" + particles.child(name) + "'",
+         "pressure has " + std::to_string(pressure.size()) + " values for " + std::to_string(n) +
+             " active particles");
+  }
+  if (H5Lexists(pg.get(), name.c_str(), H5P_DEFAULT) > 0 &&
+      H5Ldelete(pg.get(), name.c_str(), H5P_DEFAULT) < 0)
+    fail_h5(path_, "group '" + particles.child(name) + "'", "cannot be replaced");
+  {
+    Handle g = create_group(particles, name);
+    const Loc snap = particles.at(g.get(), name);
+    write_column(snap, "pos", ps.pos, n, true);
+    write_column(snap, "vel", ps.vel, n, true);
+    write_column(snap, "rho", ps.rho, n, true);
+    write_column(snap, "p", pressure, n, true);
+    write_column(snap, "mass", ps.mass, n, true);
+    write_column(snap, "type", ps.kind, n, true);
+    write_column(snap, "body", ps.body, n, true);
+    write_column(snap, "id", ps.id, n, true);
+    // Attributes last: a group without them was cut short and is skipped by readers.
+    write_attr(snap, "time", time);
+    write_attr<std::int64_t>(snap, "step", step);
+  }
+  if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) fail_h5(path_, "", "cannot be flushed");
+}
+
+RunMetadata read_metadata(const std::string& path) {
+  QuietErrors quiet;
+  Handle f = open_file(path, H5F_ACC_RDONLY);
+  return read_metadata_group(Loc{f.get(), path, "/"});
+}
+
+std::vector<SnapshotInfo> list_snapshots(const std::string& path) {
+  QuietErrors quiet;
+  Handle f = open_file(path, H5F_ACC_RDONLY);
+  const Loc root{f.get(), path, "/"};
+  Handle pg = open_group(root, "particles");
+  const Loc particles = root.at(pg.get(), "particles");
+  std::vector<SnapshotInfo> out;
+  for (const auto& name : child_names(particles)) {
+    Handle g(H5Gopen2(pg.get(), name.c_str(), H5P_DEFAULT), H5Gclose);
+    if (!g.valid()) continue;
+    const Loc snap = particles.at(g.get(), name);
+    if (!has_attr(snap, "time") || !has_attr(snap, "step")) continue;  // cut short by a crash
+    out.push_back({snap.path, static_cast<long>(read_attr<std::int64_t>(snap, "step")),
+                   read_attr<double>(snap, "time")});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const SnapshotInfo& a, const SnapshotInfo& b) {
+    return a.time < b.time || (a.time == b.time && a.step < b.step);
+  });
+  return out;
+}
+
+template <int D>
+SnapshotData<D> read_snapshot(const std::string& path, const SnapshotInfo& info) {
+  QuietErrors quiet;
+  Handle f = open_file(path, H5F_ACC_RDONLY);
+  const std::string group = info.group.starts_with('/') ? info.group : "/particles/" + info.group;
+  Handle g(H5Gopen2(f.get(), group.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) fail_h5(path, "group '" + group + "'", "cannot be opened");
+  const Loc snap{g.get(), path, group};
+  SnapshotData<D> s;
+  s.step = static_cast<long>(read_attr<std::int64_t>(snap, "step"));
+  s.time = read_attr<double>(snap, "time");
+  const std::size_t n = read_column(snap, "id", kAnyRows, s.id);
+  read_column(snap, "pos", n, s.pos);
+  read_column(snap, "vel", n, s.vel);
+  read_column(snap, "rho", n, s.rho);
+  read_column(snap, "p", n, s.p);
+  read_column(snap, "mass", n, s.mass);
+  read_column(snap, "type", n, s.type);
+  read_column(snap, "body", n, s.body);
+  return s;
+}
+
+// ---- Checkpoints --------------------------------------------------------------------------
+
+template <int D>
+void write_checkpoint(const std::string& path, const ParticleSet<D>& ps,
+                      const SimulationClock& clock, const std::map<std::string, double>& schedule) {
+  QuietErrors quiet;
+  const std::size_t total = ps.total();
+  bool consistent = ps.n_active <= total;
+  checkpoint_arrays(ps, [&](const char*, const auto& v) { consistent &= v.size() == total; });
+  if (!consistent) fail(path, "", "cannot save a particle set whose arrays differ in size");
+
+  const std::string tmp = path + ".tmp";
+  {
+    Handle f(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    if (!f.valid()) fail_h5(tmp, "", "cannot be created");
+    const Loc root{f.get(), tmp, "/"};
+    write_attr<std::int32_t>(root, "dim", D);
+    write_attr<std::uint64_t>(root, "n_active", ps.n_active);
+    write_attr<std::uint64_t>(root, "total", total);
+    {
+      Handle g = create_group(root, "particles");
+      const Loc p = root.at(g.get(), "particles");
+      checkpoint_arrays(
+          ps, [&](const char* name, const auto& v) { write_column(p, name, v, total, false); });
+    }
+    {
+      Handle g = create_group(root, "clock");
+      const Loc c = root.at(g.get(), "clock");
+      clock_fields(clock, [&](const char* name, const auto& v) { write_field(c, name, v); });
+    }
+    {
+      Handle g = create_group(root, "schedule");
+      const Loc s = root.at(g.get(), "schedule");
+      std::vector<std::string> names;
+      std::vector<double> values;
+      for (const auto& [name, value] : schedule) {
+        names.push_back(name);
+        values.push_back(value);
+      }
+      write_strings(s, "names", names, false, true);
+      write_column(s, "values", values, values.size(), false);
+    }
+    // Last: a file without this mark was cut short and is never restarted from.
+    write_attr<std::int32_t>(root, "complete", 1);
+    if (H5Fflush(f.get(), H5F_SCOPE_GLOBAL) < 0) fail_h5(tmp, "", "cannot be flushed");
+    if (!f.close()) fail_h5(tmp, "", "cannot be closed");
+  }
+  sync_path(tmp, false);
+
+  // Keep the previous checkpoint as .prev through a hard link, so `path` names a complete
+  // checkpoint at every moment; the final rename replaces it atomically. An incomplete file
+  // at `path` (not written here) is not worth keeping and simply gets replaced.
+  const std::string prev = path + ".prev";
+  if (file_exists(path) && checkpoint_is_complete(path)) {
+    std::error_code ec;
+    fs::remove(prev, ec);
+    fs::create_hard_link(path, prev, ec);
+    if (ec) rename_or_fail(path, prev);  // file system without hard links
+  }
+  rename_or_fail(tmp, path);
+  const fs::path dir = fs::path(path).parent_path();
+  sync_path(dir.empty() ? "." : dir.string(), true);
+}
+
+template <int D>
+Checkpoint<D> read_checkpoint(const std::string& path) {
+  QuietErrors quiet;
+  Handle f = open_file(path, H5F_ACC_RDONLY);
+  const Loc root{f.get(), path, "/"};
+  if (!has_attr(root, "complete") || read_attr<std::int32_t>(root, "complete") != 1)
+    fail(path, "", "is an incomplete checkpoint (the run stopped while writing it)");
+  const int dim = read_attr<std::int32_t>(root, "dim");
+  if (dim != D) {
+    fail(path, "attribute 'dim'",
+         "the checkpoint holds a " + std::to_string(dim) + "D run, but a " + std::to_string(D) +
+             "D run was asked to restart from it");
+  }
+  const auto n_active = read_attr<std::uint64_t>(root, "n_active");
+  const auto total = read_attr<std::uint64_t>(root, "total");
+  if (n_active > total) fail(path, "attribute 'n_active'", "exceeds the particle count");
+
+  Checkpoint<D> c;
+  auto& ps = c.particles;
+  {
+    Handle g = open_group(root, "particles");
+    const Loc p = root.at(g.get(), "particles");
+    checkpoint_arrays(ps, [&](const char* name, auto& v) { read_column(p, name, total, v); });
+    for (Kind k : ps.kind) {
+      if (k != Kind::Fluid && k != Kind::Boundary)
+        fail(path, p.dataset("kind"), "holds a value other than 0 (fluid) or 1 (boundary)");
+    }
+    ps.n_active = n_active;
+  }
+  {
+    Handle g = open_group(root, "clock");
+    const Loc k = root.at(g.get(), "clock");
+    clock_fields(c.clock, [&](const char* name, auto& v) { read_field(k, name, v); });
+  }
+  {
+    Handle g = open_group(root, "schedule");
+    const Loc s = root.at(g.get(), "schedule");
+    const auto names = read_strings(s, "names", true);
+    std::vector<double> values;
+    read_column(s, "values", names.size(), values);
+    for (std::size_t i = 0; i < names.size(); ++i) c.schedule[names[i]] = values[i];
+  }
+  return c;
+}
+
+int checkpoint_dimension(const std::string& path) {
+  QuietErrors quiet;
+  Handle f = open_file(path, H5F_ACC_RDONLY);
+  return read_attr<std::int32_t>(Loc{f.get(), path, "/"}, "dim");
+}
+
+std::string latest_valid_checkpoint(const std::string& path) {
+  // A full read: HDF5 keeps no checksum of the data, so a partial check could miss damage.
+  auto readable = [](const std::string& p, std::string& why) {
+    try {
+      const int dim = checkpoint_dimension(p);
+      if (dim == 2) {
+        read_checkpoint<2>(p);
+      } else if (dim == 3) {
+        read_checkpoint<3>(p);
+      } else {
+        fail(p, "attribute 'dim'", "unsupported dimension " + std::to_string(dim));
+      }
+      return true;
+    } catch (const std::runtime_error& e) {
+      why = e.what();
+      return false;
+    }
+  };
+  std::string why_path, why_prev;
+  if (readable(path, why_path)) return path;
+  const std::string prev = path + ".prev";
+  if (readable(prev, why_prev)) return prev;
+  throw std::runtime_error("no valid checkpoint to restart from: '" + path + "' (" + why_path +
+                           ") and '" + prev + "' (" + why_prev + ")");
+}
+
+// ---- Explicit instantiations --------------------------------------------------------------
+
+template void Hdf5RunFile::write_snapshot<2>(long, double, const ParticleSet<2>&,
+                                             const std::vector<double>&);
+template void Hdf5RunFile::write_snapshot<3>(long, double, const ParticleSet<3>&,
+                                             const std::vector<double>&);
+template SnapshotData<2> read_snapshot<2>(const std::string&, const SnapshotInfo&);
+template SnapshotData<3> read_snapshot<3>(const std::string&, const SnapshotInfo&);
+template void write_checkpoint<2>(const std::string&, const ParticleSet<2>&, const SimulationClock&,
+                                  const std::map<std::string, double>&);
+template void write_checkpoint<3>(const std::string&, const ParticleSet<3>&, const SimulationClock&,
+                                  const std::map<std::string, double>&);
+template Checkpoint<2> read_checkpoint<2>(const std::string&);
+template Checkpoint<3> read_checkpoint<3>(const std::string&);
+
+}  // namespace swell
