@@ -15,6 +15,8 @@
 
 #include "bc/dbc.hpp"
 #include "geometry/lattice_fill.hpp"
+#include "geometry/shape_factory.hpp"
+#include "io/case_file.hpp"
 
 namespace swell {
 namespace {
@@ -28,15 +30,43 @@ DiffusionModel diffusion_from(const std::string& s) {
   return DiffusionModel::Fourtakas;
 }
 
-geometry::BodyGeometry to_geometry(const BodySpec& b) {
-  geometry::BodyGeometry g;
-  g.name = b.name;
-  g.fluid = b.kind == BodySpec::Kind::Fluid;
-  g.box = b.shape.box;
-  g.walls_inside = b.walls == BodySpec::Walls::Inside;
-  g.layers = b.layers;
-  g.open = b.open;
-  return g;
+// The case's bodies as geometry: shapes built (meshes loaded) and fill_inside resolved.
+std::vector<geometry::BodyGeometry> to_geometry(const CaseSpec& spec,
+                                                std::vector<geometry::MeshReport>* meshes) {
+  const std::string base_dir = std::filesystem::path(spec.file).parent_path().string();
+  std::vector<geometry::BodyGeometry> out;
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    const BodySpec& b = spec.bodies[i];
+    const std::string key = "bodies[" + std::to_string(i) + "]";
+    geometry::BodyGeometry g;
+    g.name = b.name;
+    g.fluid = b.kind == BodySpec::Kind::Fluid;
+    g.walls_inside = b.walls == BodySpec::Walls::Inside;
+    g.layers = b.layers;
+    g.open = b.open;
+    if (g.fluid && b.fill_below) {
+      g.fill_below = b.fill_below;
+      for (std::size_t c = 0; c < spec.bodies.size(); ++c)
+        if (spec.bodies[c].name == b.fill_inside) g.container = static_cast<int>(c);
+      if (g.container < 0)
+        throw CaseError(spec.file, b.line,
+                        key + ".fill.inside: there is no body named '" + b.fill_inside + "'");
+      const BodySpec& c = spec.bodies[static_cast<std::size_t>(g.container)];
+      if (c.kind != BodySpec::Kind::Boundary || c.walls != BodySpec::Walls::Inside)
+        throw CaseError(spec.file, b.line,
+                        key + ".fill.inside: '" + b.fill_inside +
+                            "' must be a boundary body with walls: inside (a tank)");
+    } else {
+      try {
+        g.shape = geometry::build_shape(b.shape, spec.dim, base_dir, meshes);
+      } catch (const geometry::ShapeError& e) {
+        throw CaseError(spec.file, e.line() > 0 ? e.line() : b.line,
+                        key + ".shape: " + e.message());
+      }
+    }
+    out.push_back(std::move(g));
+  }
+  return out;
 }
 
 }  // namespace
@@ -44,12 +74,18 @@ geometry::BodyGeometry to_geometry(const BodySpec& b) {
 template <int D>
 CaseSetup<D> setup_case(const CaseSpec& spec) {
   CaseSetup<D> s;
+  const auto fill0 = std::chrono::steady_clock::now();
   geometry::FillOptions fo;
   fo.dim = D;
   fo.dp = spec.dp;
-  std::vector<geometry::BodyGeometry> geo;
-  for (const auto& b : spec.bodies) geo.push_back(to_geometry(b));
-  const auto filled = geometry::fill_bodies(geo, fo);
+  const std::vector<geometry::BodyGeometry> geo = to_geometry(spec, &s.meshes);
+  std::vector<geometry::FilledBody> filled;
+  try {
+    filled = geometry::fill_bodies(geo, fo);
+  } catch (const std::invalid_argument& e) {
+    throw CaseError(spec.file, 0, e.what());
+  }
+  s.fill_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - fill0).count();
 
   SolverParams& p = s.params;
   p.dp = spec.dp;
@@ -75,10 +111,12 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   s.particles.reserve(total);
   for (std::size_t b = 0; b < filled.size(); ++b) {
     const auto& fb = filled[b];
-    s.bodies.push_back({fb.name, fb.fluid, fb.points.size()});
+    const bool fluid = fb.report.fluid;
+    s.bodies.push_back({fb.report.name, fluid, fb.points.size()});
+    s.fill.push_back(fb.report);
     for (const auto& x : fb.points)
       s.particles.add(x.template head<D>(), Vec<D>::Zero(), spec.rho0, mass,
-                      fb.fluid ? Kind::Fluid : Kind::Boundary, static_cast<std::uint16_t>(b));
+                      fluid ? Kind::Fluid : Kind::Boundary, static_cast<std::uint16_t>(b));
   }
 
   // Still-water height and c0 = coefsound sqrt(g H) (DualSPHysics' convention).

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/lattice_fill.hpp"
+#include "geometry/mesh_solid.hpp"
 #include "io/case_spec.hpp"
 #include "solver/particle_set.hpp"
 #include "solver/simulation.hpp"
@@ -28,9 +30,17 @@ struct CaseSetup {
   std::vector<BodyCount> bodies;
   double hswl = 0.0;   // still-water height used for c0
   double floor = 0.0;  // lowest fluid level along "up", for the surge front
+  // What the fill did, for the run summary and `swell fill`: per body (case order) counts and
+  // the lattice volume check, every mesh loaded (faces, orientation, repairs), and the time
+  // spent building shapes and filling the lattice.
+  std::vector<geometry::BodyFillReport> fill;
+  std::vector<geometry::MeshReport> meshes;
+  double fill_seconds = 0.0;
 };
 
-// Builds the particles (geometry/), hydrostatic densities (bc/) and solver parameters.
+// Builds the particles (geometry/), hydrostatic densities (bc/) and solver parameters. Mesh
+// files are read relative to the case file's folder. Throws CaseError (file and line) for a
+// shape that cannot be built or a body that cannot be filled.
 template <int D>
 CaseSetup<D> setup_case(const CaseSpec& spec);
 

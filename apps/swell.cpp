@@ -7,6 +7,7 @@
 #include <string>
 
 #include "apps/case_runner.hpp"
+#include "apps/fill_command.hpp"
 #include "apps/probe_command.hpp"
 #include "io/case_file.hpp"
 #include "solver/simulation.hpp"
@@ -36,6 +37,15 @@ int main(int argc, char** argv) {
   std::string restart_dir;
   run->add_option("--restart", restart_dir,
                   "continue the run in this output folder from its last checkpoint");
+
+  std::string fill_case, fill_out;
+  int fill_threads = 0;
+  auto* fill = app.add_subcommand(
+      "fill", "build a case's particles as `run` would, write <name>_fill.vtp and report");
+  fill->add_option("case", fill_case, "case file (YAML)")->required();
+  fill->add_option("-o,--out", fill_out, "output folder (default: out/<case name>)");
+  fill->add_option("-t,--threads", fill_threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
 
   std::string probe_dir, probe_at, probe_normal, probe_kind = "pressure", probe_out;
   double probe_offset = -1.0;
@@ -71,6 +81,12 @@ int main(int argc, char** argv) {
       opt.threads = threads;
       opt.progress = !quiet;
       swell::run_case(spec, opt);
+    } else if (*fill) {
+      const swell::CaseSpec spec = swell::load_case_file(fill_case);
+      swell::FillCommandOptions opt;
+      opt.out_dir = fill_out;
+      opt.threads = fill_threads;
+      swell::run_fill(spec, opt, std::cout);
     } else if (*probe) {
       swell::ProbeOptions opt;
       opt.out_dir = probe_dir;

@@ -1,93 +1,314 @@
 #include "geometry/lattice_fill.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <exception>
+#include <sstream>
 #include <stdexcept>
+#include <unordered_set>
+
+#include "geometry/primitives.hpp"
 
 namespace swell::geometry {
 namespace {
 
-// True when the point lies beyond an open face of the box (no wall particles there).
-bool beyond_open_face(const BodyGeometry& b, const Eigen::Vector3d& p) {
-  static const std::array<const char*, 3> axes = {"x", "y", "z"};
-  for (const auto& face : b.open) {
-    for (int d = 0; d < 3; ++d) {
-      if (face == std::string(axes[d]) + "min" && p[d] < b.box.min[d]) return true;
-      if (face == std::string(axes[d]) + "max" && p[d] > b.box.max[d]) return true;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Lattice index range covering a box padded by `pad` (one extra plane each side against
+// rounding); z is {0} in 2D.
+struct IndexRange {
+  std::array<long, 3> lo{0, 0, 0}, hi{0, 0, 0};
+};
+
+IndexRange index_range(const Aabb& b, double pad, int dim, double dp) {
+  IndexRange r;
+  for (int d = 0; d < dim; ++d) {
+    if (!std::isfinite(b.min[d]) || !std::isfinite(b.max[d]))
+      throw std::invalid_argument("fill: a shape has no finite bounds");
+    r.lo[d] = static_cast<long>(std::floor((b.min[d] - pad) / dp - 0.5)) - 1;
+    r.hi[d] = static_cast<long>(std::ceil((b.max[d] + pad) / dp - 0.5)) + 1;
+  }
+  return r;
+}
+
+// Max-norm distance from p to the box over the first dim axes (0 inside).
+double box_gap(const Aabb& b, const Eigen::Vector3d& p, int dim) {
+  double g = 0.0;
+  for (int d = 0; d < dim; ++d) g = std::max({g, b.min[d] - p[d], p[d] - b.max[d]});
+  return g;
+}
+
+// One shape test along a lattice row: is p on the required side of the surface
+// (Shape::contains, cheap even for meshes) and does its signed distance lie in [lo, hi]
+// (infinite ends: no condition, and no distance query at all)? The signed distance is
+// 1-Lipschitz, so after a value v the answer cannot change for the next
+// floor((distance from v to the nearest of lo, hi, 0) / dp) points of the row; those reuse it
+// (march). Rounding is covered by a margin of 1e-6 dp. Distance queries deep inside a mesh are
+// its most expensive ones (many faces at similar distances), hence the side test first.
+class RowTest {
+ public:
+  RowTest(const Shape* shape, bool inside, double lo, double hi, double dp, bool march)
+      : shape_(shape),
+        inside_(inside),
+        lo_(lo),
+        hi_(hi),
+        dp_(dp),
+        march_(march),
+        side_only_(!std::isfinite(lo) && !std::isfinite(hi)) {}
+
+  // i must not decrease between calls within a row.
+  bool operator()(long i, const Eigen::Vector3d& p) {
+    if (march_ && i <= valid_until_) return value_;
+    if (shape_->contains(p) != inside_) return false;
+    if (side_only_) return true;
+    const double v = shape_->signed_distance(p);
+    value_ = v >= lo_ && v <= hi_ && (inside_ ? v < 0.0 : v > 0.0);
+    if (march_) {
+      const double room =
+          std::min({std::abs(v - lo_), std::abs(v - hi_), std::abs(v)}) - 1e-6 * dp_;
+      valid_until_ = room > 0.0 ? i + static_cast<long>(std::min(room / dp_, 1e15)) : i;
     }
+    return value_;
+  }
+
+ private:
+  const Shape* shape_;
+  bool inside_;
+  double lo_, hi_, dp_;
+  bool march_, side_only_;
+  long valid_until_ = std::numeric_limits<long>::min();
+  bool value_ = false;
+};
+
+// True when p lies beyond an open face of the body (no wall particles there).
+bool beyond_open_face(const std::vector<int>& open_faces, const Aabb& b, const Eigen::Vector3d& p) {
+  for (const int f : open_faces) {
+    const int d = f / 2;
+    if (f % 2 == 0 ? p[d] < b.min[d] : p[d] > b.max[d]) return true;
   }
   return false;
 }
 
-// Is p part of the wall of boundary body b?
-bool in_wall(const BodyGeometry& b, const Eigen::Vector3d& p, int dim, double dp) {
-  const double sd = b.box.signed_distance(p, dim);
-  const double thickness = b.layers * dp * (1.0 + 1e-9);
-  if (b.walls_inside) return sd > 0.0 && sd <= thickness && !beyond_open_face(b, p);
-  return sd < 0.0 && sd >= -thickness;
+// Face names -> 2 * axis + (0: min, 1: max).
+std::vector<int> open_face_ids(const BodyGeometry& b, int dim) {
+  static const std::array<const char*, 6> names = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  std::vector<int> ids;
+  for (const auto& face : b.open) {
+    const auto it = std::find(names.begin(), names.begin() + 2 * dim, face);
+    if (it == names.begin() + 2 * dim)
+      throw std::invalid_argument("body '" + b.name + "': unknown open face '" + face + "'");
+    ids.push_back(static_cast<int>(it - names.begin()));
+  }
+  return ids;
 }
 
-// Is p free for fluid with respect to boundary body b (not in its solid side, not too close)?
-bool clear_of(const BodyGeometry& b, const Eigen::Vector3d& p, int dim, double gap) {
-  const double sd = b.box.signed_distance(p, dim);
-  const double tol = 1e-9 * (gap > 0.0 ? gap : 1.0);
-  if (b.walls_inside) return sd <= -gap + tol;
-  return sd >= gap - tol;
+// Packs lattice indices into one key (21 bits per axis).
+std::uint64_t lattice_key(const Eigen::Vector3d& p, double dp) {
+  std::uint64_t key = 0;
+  for (int d = 0; d < 3; ++d) {
+    const long i = std::lround(p[d] / dp - 0.5) + (1L << 20);
+    if (i < 0 || i >= (1L << 21))
+      throw std::invalid_argument(
+          "fill: more than 2^20 lattice planes from the origin; "
+          "is dp far too small for the domain?");
+    key = (key << 21) | static_cast<std::uint64_t>(i);
+  }
+  return key;
 }
 
-template <class Fn>
-void for_lattice_points(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int dim, double dp,
-                        Fn&& fn) {
-  std::array<long, 3> i0{0, 0, 0}, i1{0, 0, 0};
-  for (int d = 0; d < dim; ++d) {
-    i0[d] = static_cast<long>(std::floor(lo[d] / dp - 0.5)) - 1;
-    i1[d] = static_cast<long>(std::ceil(hi[d] / dp - 0.5)) + 1;
-  }
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (long k = i0[2]; k <= i1[2]; ++k) {
-    if (dim == 3) p.z() = (k + 0.5) * dp;
-    for (long j = i0[1]; j <= i1[1]; ++j) {
-      p.y() = (j + 0.5) * dp;
-      for (long i = i0[0]; i <= i1[0]; ++i) {
-        p.x() = (i + 0.5) * dp;
-        fn(p);
-      }
-    }
-  }
-}
+// Everything a row of one body needs, prepared once per body.
+struct BodyPlan {
+  const BodyGeometry* body = nullptr;
+  const Shape* region = nullptr;  // fluid: own shape or container's; wall: own shape
+  Aabb region_bounds;             // where its points can be (level applied, walls added)
+  Aabb shape_bounds;              // wall: the shape's own bounds (open faces)
+  std::optional<double> level;    // fluid below a level
+  std::vector<int> open_faces;    // wall
+  double thickness = 0.0;         // wall
+};
+
+struct Obstacle {  // a boundary body as seen by fluid points
+  const Shape* shape;
+  Aabb bounds;
+  bool walls_inside;
+  double reach;  // tanks: beyond this max-norm distance from the bounds, no interaction
+};
 
 }  // namespace
+
+double BodyFillReport::volume_error(int dim, double dp) const {
+  if (!(region_volume > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return static_cast<double>(in_region) * std::pow(dp, dim) / region_volume - 1.0;
+}
 
 std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
                                     const FillOptions& opt) {
   if (!(opt.dp > 0.0)) throw std::invalid_argument("fill_bodies: dp must be positive");
-  const int dim = opt.dim;
+  if (opt.dim != 2 && opt.dim != 3) throw std::invalid_argument("fill_bodies: dim must be 2 or 3");
+  const int dim = opt.dim, up = dim - 1;
   const double dp = opt.dp, gap = opt.gap_factor * dp;
-  std::vector<FilledBody> out;
+  const double gap_tol = opt.gap_tolerance * dp;
+  const char* up_name = dim == 2 ? "y" : "z";
+
+  // Validate and plan every body.
+  std::vector<BodyPlan> plans(bodies.size());
+  std::vector<Obstacle> obstacles;
   for (std::size_t bi = 0; bi < bodies.size(); ++bi) {
     const BodyGeometry& b = bodies[bi];
-    FilledBody fb{b.name, b.fluid, {}};
-    Eigen::Vector3d lo = b.box.min, hi = b.box.max;
-    if (!b.fluid && b.walls_inside) {
-      lo.array() -= b.layers * dp;
-      hi.array() += b.layers * dp;
+    BodyPlan& plan = plans[bi];
+    plan.body = &b;
+    const std::string who = "body '" + b.name + "'";
+    if (b.fluid && b.fill_below) {
+      const int c = b.container;
+      if (c < 0 || c >= static_cast<int>(bodies.size()) || bodies[c].fluid ||
+          !bodies[c].walls_inside || !bodies[c].shape)
+        throw std::invalid_argument(who +
+                                    ": fill_below needs a container that is a boundary "
+                                    "body with walls inside");
+      plan.region = bodies[c].shape.get();
+      plan.region_bounds = plan.region->bounds();
+      plan.region_bounds.max[up] = std::min(plan.region_bounds.max[up], *b.fill_below);
+      plan.level = b.fill_below;
+      continue;
     }
-    for_lattice_points(lo, hi, dim, dp, [&](const Eigen::Vector3d& p) {
-      if (!b.fluid) {
-        if (in_wall(b, p, dim, dp)) fb.points.push_back(p);
-        return;
+    if (!b.shape) throw std::invalid_argument(who + " has no shape");
+    plan.region = b.shape.get();
+    plan.region_bounds = b.shape->bounds();
+    if (b.fluid) continue;
+    if (b.layers < 1) throw std::invalid_argument(who + ": layers must be at least 1");
+    plan.thickness = b.layers * dp * (1.0 + 1e-9);
+    plan.shape_bounds = b.shape->bounds();
+    if (b.walls_inside) {
+      plan.open_faces = open_face_ids(b, dim);
+      for (int d = 0; d < dim; ++d) {
+        plan.region_bounds.min[d] -= plan.thickness;
+        plan.region_bounds.max[d] += plan.thickness;
       }
-      if (!b.box.contains(p, dim)) return;
-      for (const auto& other : bodies)
-        if (!other.fluid && !clear_of(other, p, dim, gap)) return;
-      for (std::size_t e = 0; e < bi; ++e)  // earlier fluid bodies keep shared points
-        if (bodies[e].fluid && bodies[e].box.contains(p, dim)) return;
-      fb.points.push_back(p);
-    });
+    }
+    obstacles.push_back({b.shape.get(), b.shape->bounds(), b.walls_inside,
+                         b.walls_inside ? plan.thickness + gap : 0.0});
+  }
+
+  std::vector<FilledBody> out;
+  std::unordered_set<std::uint64_t> taken;  // points of earlier fluid bodies
+  Aabb taken_bounds;
+  for (std::size_t bi = 0; bi < bodies.size(); ++bi) {
+    const BodyGeometry& b = bodies[bi];
+    const BodyPlan& plan = plans[bi];
+    FilledBody fb;
+    fb.report.name = b.name;
+    fb.report.fluid = b.fluid;
+    if (plan.level) {
+      std::ostringstream s;
+      s << "below " << up_name << " = " << *plan.level << " inside '" << bodies[b.container].name
+        << "'";
+      fb.report.region = s.str();
+      // Known exactly when the container is a box: its cross-section times the depth.
+      if (const auto* box = dynamic_cast<const BoxShape*>(plan.region)) {
+        const Aabb cb = box->bounds();
+        double v = std::max(0.0, std::min(cb.max[up], *plan.level) - cb.min[up]);
+        for (int d = 0; d < up; ++d) v *= cb.max[d] - cb.min[d];
+        fb.report.region_volume = v;
+      }
+    } else {
+      fb.report.region = b.shape->describe();
+      if (b.fluid) fb.report.region_volume = b.shape->volume();
+    }
+
+    const IndexRange range = index_range(plan.region_bounds, 0.0, dim, dp);
+    const long nj = range.hi[1] - range.lo[1] + 1, nk = range.hi[2] - range.lo[2] + 1;
+    const long nrows = std::max(0L, nj) * std::max(0L, nk);
+    std::vector<std::vector<Eigen::Vector3d>> rows(static_cast<std::size_t>(nrows));
+    std::vector<std::size_t> row_in_region(static_cast<std::size_t>(nrows), 0);
+    const bool check_taken = b.fluid && !taken.empty();
+    std::exception_ptr error;
+
+#pragma omp parallel
+    {
+      // Per-thread tests, reset at each row.
+      std::vector<RowTest> clear_tests;
+#pragma omp for schedule(dynamic, 4)
+      for (long r = 0; r < nrows; ++r) {
+        try {
+          const long j = range.lo[1] + r % nj, k = range.lo[2] + r / nj;
+          Eigen::Vector3d p((range.lo[0] + 0.5) * dp, (j + 0.5) * dp,
+                            dim == 3 ? (k + 0.5) * dp : 0.0);
+          // Skip the row when it misses the region's bounds.
+          bool misses = false;
+          for (int d = 1; d < dim; ++d)
+            misses = misses || p[d] < plan.region_bounds.min[d] || p[d] > plan.region_bounds.max[d];
+          if (misses || (plan.level && !(p[up] < *plan.level))) continue;
+          auto& row = rows[static_cast<std::size_t>(r)];
+          std::size_t in_region = 0;
+          if (!b.fluid) {
+            RowTest wall = b.walls_inside
+                               ? RowTest(plan.region, false, 0.0, plan.thickness, dp, opt.march)
+                               : RowTest(plan.region, true, -plan.thickness, 0.0, dp, opt.march);
+            for (long i = range.lo[0]; i <= range.hi[0]; ++i) {
+              p.x() = (i + 0.5) * dp;
+              if (box_gap(plan.region_bounds, p, dim) > 0.0) continue;
+              if (!plan.open_faces.empty() &&
+                  beyond_open_face(plan.open_faces, plan.shape_bounds, p))
+                continue;
+              if (wall(i, p)) row.push_back(p);
+            }
+          } else {
+            RowTest inside(plan.region, true, -kInf, kInf, dp, opt.march);
+            clear_tests.clear();
+            for (const auto& o : obstacles)
+              clear_tests.push_back(
+                  o.walls_inside ? RowTest(o.shape, true, -kInf, -gap + gap_tol, dp, opt.march)
+                                 : RowTest(o.shape, false, gap - gap_tol, kInf, dp, opt.march));
+            for (long i = range.lo[0]; i <= range.hi[0]; ++i) {
+              p.x() = (i + 0.5) * dp;
+              if (box_gap(plan.region_bounds, p, dim) > 0.0 || !inside(i, p)) continue;
+              ++in_region;
+              bool keep = true;
+              for (std::size_t o = 0; keep && o < obstacles.size(); ++o) {
+                const Obstacle& ob = obstacles[o];
+                const double g = box_gap(ob.bounds, p, dim);
+                if (ob.walls_inside ? g > ob.reach : g >= gap - gap_tol) continue;  // far away
+                keep = clear_tests[o](i, p);
+              }
+              if (keep && check_taken && box_gap(taken_bounds, p, dim) <= 0.0)
+                keep = !taken.count(lattice_key(p, dp));
+              if (keep) row.push_back(p);
+            }
+          }
+          row_in_region[static_cast<std::size_t>(r)] = in_region;
+        } catch (...) {
+#pragma omp critical(swell_fill_error)
+          if (!error) error = std::current_exception();
+        }
+      }
+    }
+    if (error) std::rethrow_exception(error);
+
+    std::size_t total = 0;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      total += rows[r].size();
+      fb.report.in_region += row_in_region[r];
+    }
+    fb.points.reserve(total);
+    for (auto& row : rows) fb.points.insert(fb.points.end(), row.begin(), row.end());
+    fb.report.particles = fb.points.size();
+    if (!b.fluid) fb.report.in_region = 0;
     if (fb.points.empty())
       throw std::invalid_argument("body '" + b.name +
                                   "' holds no particle at dp = " + std::to_string(dp) +
                                   " (is it thinner than dp, or inside a wall?)");
+    if (b.fluid && bi + 1 < bodies.size()) {
+      bool later_fluid = false;
+      for (std::size_t e = bi + 1; e < bodies.size(); ++e) later_fluid |= bodies[e].fluid;
+      if (later_fluid) {
+        for (const auto& p : fb.points) {
+          taken.insert(lattice_key(p, dp));
+          taken_bounds.extend(p);
+        }
+      }
+    }
     out.push_back(std::move(fb));
   }
   return out;

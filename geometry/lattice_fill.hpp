@@ -4,28 +4,54 @@
 // particles of different bodies line up and never overlap. A box face placed on a multiple of
 // dp then lies half-way between two lattice planes: the fluid fills its volume exactly
 // (N dp^D = V) and the first wall layer sits dp/2 behind the surface.
+//
+// Bodies are Shapes (geometry/shape.hpp). Wall particles are the lattice points within
+// `layers` dp of the surface on the solid side; fluid particles the points of the fluid
+// region clear of every wall by the gap and not taken by an earlier fluid body.
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "geometry/shapes.hpp"
+#include "geometry/shape.hpp"
 
 namespace swell::geometry {
 
 struct BodyGeometry {
   std::string name;
   bool fluid = true;
-  Box box;
+  ShapePtr shape;            // null only for a fluid body given by fill_below
   bool walls_inside = true;  // boundary: fluid inside the shape (tank) or outside (structure)
   int layers = 3;
-  std::vector<std::string> open;  // faces left open: xmin, xmax, ymin, ymax, zmin, zmax
+  // Boundary, walls inside: faces left without wall, any of xmin, xmax, ymin, ymax, zmin,
+  // zmax. A wall point beyond the shape's bounds on that side is dropped.
+  std::vector<std::string> open;
+  // Fluid, instead of `shape`: every point below `fill_below` along the vertical axis (y in
+  // 2D, z in 3D) inside the shape of body `container`, a boundary body with walls inside.
+  std::optional<double> fill_below;
+  int container = -1;
+};
+
+// What the fill did with one body, for the setup report.
+struct BodyFillReport {
+  std::string name;
+  bool fluid = true;
+  std::string region;  // Shape::describe(), or "below y = L inside 'tank'"
+  std::size_t particles = 0;
+  // Fluid: lattice points of the body's region before the points near walls or taken by an
+  // earlier fluid body were removed, and the exact region volume (area in 2D), NaN if unknown.
+  std::size_t in_region = 0;
+  double region_volume = std::numeric_limits<double>::quiet_NaN();
+
+  // in_region dp^D relative to region_volume, minus 1; NaN when the volume is unknown.
+  double volume_error(int dim, double dp) const;
 };
 
 struct FilledBody {
-  std::string name;
-  bool fluid = true;
+  BodyFillReport report;
   std::vector<Eigen::Vector3d> points;  // z = 0 in 2D
 };
 
@@ -35,10 +61,22 @@ struct FillOptions {
   // Fluid points closer than this to a wall body's surface are dropped (default dp/2, which
   // on an aligned lattice keeps every fluid point whose cell lies inside the fluid region).
   double gap_factor = 0.5;
+  // Points within this fraction of dp short of the gap still count as clear: aligned geometry
+  // puts them exactly dp/2 from the surface, and single-precision STL coordinates (relative
+  // error 6e-8) must not cost a whole layer of fluid.
+  double gap_tolerance = 1e-3;
+  // Reuse a shape test for the next points of a row while the signed distance (1-Lipschitz)
+  // cannot cross a threshold there. Same result as evaluating every point; off for tests.
+  bool march = true;
 };
 
-// Fills every body; fluid bodies lose the points inside walls and points of earlier fluid
-// bodies. Throws std::invalid_argument naming the body if one gets no particle.
+// Fills every body, in parallel over lattice rows (OpenMP); the points come out in lattice
+// order (z, then y, then x) whatever the thread count. A fluid point is kept when it lies in
+// the body's region and, for every boundary body: with walls inside, at depth >= gap inside
+// its shape (unless it lies beyond the body's walls, more than layers dp + gap outside its
+// bounds); with walls outside, at distance >= gap outside its shape; and no earlier fluid body
+// holds it. Throws std::invalid_argument naming the body if one gets no particle or is
+// inconsistent (missing shape, bad container).
 std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
                                     const FillOptions& opt);
 

@@ -3,8 +3,8 @@
 // The reader walks the YAML tree section by section. Each map is first checked against its list
 // of allowed keys, so a misspelt key is an error rather than a silently ignored setting; then
 // each value is converted by a small typed helper that names the key path in its message. The
-// helpers (NodeReader) are shared with the gauge reader, io/case_gauges.cpp, through
-// io/case_parse_util.hpp.
+// helpers (NodeReader) are shared with the shape reader, io/case_shapes.cpp, and the gauge
+// reader, io/case_gauges.cpp, through io/case_parse_util.hpp.
 #include "io/case_file.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -70,7 +70,7 @@ std::string describe(const YAML::Node& node) {
   if (node.IsScalar()) return "the quoted string '" + node.Scalar() + "'";
   if (node.IsSequence()) {
     if (auto shown = short_list(node)) return *shown;
-    return "a list of " + std::to_string(node.size()) + " items";
+    return "a list of " + std::to_string(node.size()) + (node.size() == 1 ? " item" : " items");
   }
   if (node.IsMap()) return "a map with " + std::to_string(node.size()) + " keys";
   return "an empty value";
@@ -163,13 +163,22 @@ Eigen::Vector3d NodeReader::vector(const YAML::Node& node, const std::string& pa
   return v;
 }
 
+void NodeReader::check_ordered(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
+                               const YAML::Node& min_node, const YAML::Node& max_node,
+                               const std::string& path) const {
+  static const char* const kAxes[] = {"x", "y", "z"};
+  for (int d = 0; d < dim_; ++d) {
+    if (min[d] < max[d]) continue;
+    const auto i = static_cast<std::size_t>(d);
+    fail(max_node, path + ": expected min < max on every axis, but on " + kAxes[d] +
+                       " min = " + min_node[i].Scalar() + " and max = " + max_node[i].Scalar());
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Sections
 
 namespace {
-
-// Shape kinds known to read_shape(); listed in messages.
-const Names kShapeKinds = {"box"};
 
 class CaseReader : private NodeReader {
  public:
@@ -189,26 +198,11 @@ class CaseReader : private NodeReader {
   std::vector<BodySpec> read_bodies(const YAML::Node& node, const std::string& path) const;
   BodySpec read_body(const YAML::Node& node, const std::string& path) const;
   void read_wall_options(const YAML::Node& node, const std::string& path, BodySpec& body) const;
-  ShapeSpec read_shape(const YAML::Node& node, const std::string& path) const;
-  ShapeSpec read_box(const YAML::Node& node, const std::string& path) const;
+  void read_fill(const YAML::Node& node, const std::string& path, BodySpec& body) const;
+  void check_fill_targets(const YAML::Node& node, const std::string& path,
+                          const std::vector<BodySpec>& bodies) const;
   std::vector<std::string> read_open_faces(const YAML::Node& node, const std::string& path) const;
-  // Checks min < max on every axis; `max_node` is where a failure is reported.
-  void check_ordered(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
-                     const YAML::Node& min_node, const YAML::Node& max_node,
-                     const std::string& path) const;
 };
-
-void CaseReader::check_ordered(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
-                               const YAML::Node& min_node, const YAML::Node& max_node,
-                               const std::string& path) const {
-  static const char* const kAxes[] = {"x", "y", "z"};
-  for (int d = 0; d < dim_; ++d) {
-    if (min[d] < max[d]) continue;
-    const auto i = static_cast<std::size_t>(d);
-    fail(max_node, path + ": expected min < max on every axis, but on " + kAxes[d] +
-                       " min = " + min_node[i].Scalar() + " and max = " + max_node[i].Scalar());
-  }
-}
 
 CaseSpec CaseReader::read(const YAML::Node& root) {
   const Names top_keys = {"name",   "dim",    "dp",     "physics", "time",
@@ -386,20 +380,85 @@ std::vector<BodySpec> CaseReader::read_bodies(const YAML::Node& node,
     return b.kind == BodySpec::Kind::Fluid;
   });
   if (!has_fluid) fail(node, path + ": no fluid body; at least one body needs 'kind: fluid'");
+  check_fill_targets(node, path, bodies);
   return bodies;
 }
 
 BodySpec CaseReader::read_body(const YAML::Node& node, const std::string& path) const {
-  expect_map(node, path, {"name", "kind", "shape", "walls", "layers", "open"});
+  expect_map(node, path, {"name", "kind", "shape", "fill", "walls", "layers", "open"});
   BodySpec body;
   body.line = line_of(node);
   body.name = name(require(node, path, "name"), child(path, "name"));
   const std::string kind =
       choice(require(node, path, "kind"), child(path, "kind"), {"fluid", "boundary"});
   body.kind = kind == "fluid" ? BodySpec::Kind::Fluid : BodySpec::Kind::Boundary;
-  body.shape = read_shape(require(node, path, "shape"), child(path, "shape"));
+  // A fluid body is a shape or a fill of a tank; a boundary body is always a shape.
+  const std::optional<YAML::Node> shape = find(node, "shape");
+  const std::optional<YAML::Node> fill = find(node, "fill");
+  if (body.kind == BodySpec::Kind::Boundary) {
+    if (fill) {
+      fail(*fill, child(path, "fill") + ": only fluid bodies take 'fill', but body '" + body.name +
+                      "' has kind boundary");
+    }
+    body.shape = case_parse::read_shape(*this, require(node, path, "shape"), child(path, "shape"));
+  } else if (shape && fill) {
+    fail(*fill, child(path, "fill") + ": body '" + body.name +
+                    "' gives both 'shape' and 'fill'; a fluid body takes exactly one of them");
+  } else if (fill) {
+    read_fill(*fill, child(path, "fill"), body);
+  } else if (shape) {
+    body.shape = case_parse::read_shape(*this, *shape, child(path, "shape"));
+  } else {
+    fail(node, "missing required key '" + child(path, "shape") + "' (or '" + child(path, "fill") +
+                   "': a fluid body is a shape, or a fill such as {below: 0.3, inside: tank})");
+  }
   read_wall_options(node, path, body);
   return body;
+}
+
+// `fill: {below: LEVEL, inside: BODY}`; BODY is checked once every body is known
+// (check_fill_targets), since it may come later in the list.
+void CaseReader::read_fill(const YAML::Node& node, const std::string& path, BodySpec& body) const {
+  expect(node.IsMap(), node, path, "a map such as {below: 0.3, inside: tank}");
+  check_keys(node, path, {"below", "inside"});
+  body.fill_below = number(require(node, path, "below"), child(path, "below"));
+  body.fill_inside = name(require(node, path, "inside"), child(path, "inside"));
+}
+
+// Every fill must name a boundary body with `walls: inside` (a tank the water can fill).
+void CaseReader::check_fill_targets(const YAML::Node& node, const std::string& path,
+                                    const std::vector<BodySpec>& bodies) const {
+  Names tanks;
+  for (const BodySpec& body : bodies) {
+    if (body.kind == BodySpec::Kind::Boundary && body.walls == BodySpec::Walls::Inside) {
+      tanks.push_back(body.name);
+    }
+  }
+  const std::string choices = tanks.empty() ? "the case has no boundary body with walls: inside"
+                                            : "boundary bodies with walls: inside: " + join(tanks);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const BodySpec& body = bodies[i];
+    if (!body.fill_below) continue;
+    const auto target = std::find_if(bodies.begin(), bodies.end(),
+                                     [&](const BodySpec& b) { return b.name == body.fill_inside; });
+    std::string problem;
+    if (target == bodies.end()) {
+      problem = "there is no body named '" + body.fill_inside + "'";
+    } else if (target->kind == BodySpec::Kind::Fluid) {
+      problem =
+          "body '" + target->name + "' (line " + std::to_string(target->line) + ") has kind fluid";
+    } else if (target->walls != BodySpec::Walls::Inside) {
+      problem = "body '" + target->name + "' (line " + std::to_string(target->line) +
+                ") has walls: outside (a solid structure)";
+    } else {
+      continue;
+    }
+    const std::string inside_path = child(child(item(path, i), "fill"), "inside");
+    fail(node[i]["fill"]["inside"],
+         inside_path + ": fluid body '" + body.name + "' fills the inside of '" + body.fill_inside +
+             "', but " + problem + "; a fill needs a boundary body with walls: inside (" + choices +
+             ")");
+  }
 }
 
 // walls, layers and open describe wall particles, so only boundary bodies take them.
@@ -423,31 +482,6 @@ void CaseReader::read_wall_options(const YAML::Node& node, const std::string& pa
     expect(body.layers >= 1, *v, child(path, "layers"), "an integer >= 1");
   }
   if (auto v = find(node, "open")) body.open = read_open_faces(*v, child(path, "open"));
-}
-
-// A shape is a map with a single key naming its kind. New kinds (cylinder, sphere, stl, ...)
-// are added as a branch here, a reader like read_box, and an entry in kShapeKinds.
-ShapeSpec CaseReader::read_shape(const YAML::Node& node, const std::string& path) const {
-  expect(node.IsMap() && node.size() == 1, node, path,
-         "a map with exactly one shape key (one of: " + join(kShapeKinds) + ")");
-  const auto entry = *node.begin();
-  const YAML::Node& key = entry.first;
-  expect(key.IsScalar(), key, path, "a shape name");
-  const std::string& kind = key.Scalar();
-  if (kind == "box") return read_box(entry.second, child(path, kind));
-  fail(key, "unknown shape '" + child(path, kind) + "'; known shapes: " + join(kShapeKinds));
-}
-
-ShapeSpec CaseReader::read_box(const YAML::Node& node, const std::string& path) const {
-  expect_map(node, path, {"min", "max"});
-  const YAML::Node min_node = require(node, path, "min");
-  const YAML::Node max_node = require(node, path, "max");
-  ShapeSpec shape;
-  shape.type = ShapeSpec::Type::Box;
-  shape.box.min = vector(min_node, child(path, "min"));
-  shape.box.max = vector(max_node, child(path, "max"));
-  check_ordered(shape.box.min, shape.box.max, min_node, max_node, path);
-  return shape;
 }
 
 std::vector<std::string> CaseReader::read_open_faces(const YAML::Node& node,

@@ -1,4 +1,5 @@
-// Internal to the case-file reader (io/case_file.cpp, io/case_gauges.cpp); not a public API.
+// Internal to the case-file reader (io/case_file.cpp, io/case_gauges.cpp, io/case_shapes.cpp);
+// not a public API.
 //
 // NodeReader holds the helpers every section reader uses: key checks, typed value conversion,
 // and error reporting as CaseError("<file>:<line>: <key path>: ..."). The section readers derive
@@ -89,6 +90,11 @@ class NodeReader {
     expect(ok(value), node, path, expected);
     return value;
   }
+  // Checks min < max on each of the first `dim` axes; `max_node` is where a failure is reported.
+  void check_ordered(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
+                     const YAML::Node& min_node, const YAML::Node& max_node,
+                     const std::string& path) const;
+  int dim() const { return dim_; }
 
  protected:
   std::string file_;
@@ -97,6 +103,11 @@ class NodeReader {
 
 // Reads the top-level `gauges` list (io/case_gauges.cpp). `reader` supplies the file label and
 // dimension; force gauges are checked against `bodies`.
+// Reads a shape (io/case_shapes.cpp): a map with exactly one key naming its kind (box, cylinder,
+// sphere, polygon, mesh or its synonym stl, union, difference); union and difference take a list
+// of shapes, read recursively. `reader` supplies the file label and dimension.
+ShapeSpec read_shape(const NodeReader& reader, const YAML::Node& node, const std::string& path);
+
 std::vector<GaugeSpec> read_gauges(const NodeReader& reader, const YAML::Node& node,
                                    const std::string& path, const std::vector<BodySpec>& bodies);
 

@@ -7,21 +7,21 @@
 #include <string>
 #include <vector>
 
-#include "geometry/shapes.hpp"
+#include "geometry/shape_spec.hpp"
 
 namespace swell {
 
-struct ShapeSpec {
-  enum class Type { Box };
-  Type type = Type::Box;
-  geometry::Box box;  // for Type::Box (z ignored in 2D)
-};
 
 struct BodySpec {
   std::string name;
   enum class Kind { Fluid, Boundary };
   Kind kind = Kind::Fluid;
+  // Fluid bodies may instead be given as `fill: {below: LEVEL, inside: BODY}`: every lattice
+  // point below LEVEL (along the vertical axis) inside boundary body BODY's shape. `shape`
+  // is then unused.
   ShapeSpec shape;
+  std::optional<double> fill_below;
+  std::string fill_inside;
   // Boundary bodies: which side of the surface the wall particles go on.
   //   inside  - the fluid is inside the shape (a tank); particles fill `layers` outside it,
   //   outside - the fluid is outside the shape (a structure); particles fill `layers` inside it.

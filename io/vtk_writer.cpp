@@ -8,6 +8,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 #include <vtkTypeUInt16Array.h>
 #include <vtkTypeUInt32Array.h>
 #include <vtkUnsignedCharArray.h>
@@ -38,7 +39,8 @@ void write_file_atomically(const std::string& path, const std::string& text) {
 
 template <int D>
 void write_vtp(const std::string& path, const ParticleSet<D>& ps,
-               const std::vector<double>& pressure, ParticleFilter filter) {
+               const std::vector<double>& pressure, ParticleFilter filter,
+               const std::vector<std::string>* body_names) {
   std::vector<std::size_t> sel;
   sel.reserve(ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i) {
@@ -103,6 +105,16 @@ void write_vtp(const std::string& path, const ParticleSet<D>& ps,
   poly->GetPointData()->AddArray(type);
   poly->GetPointData()->AddArray(body);
   poly->GetPointData()->AddArray(id);
+  if (body_names) {
+    vtkNew<vtkStringArray> names;
+    names->SetName("body_name");
+    names->SetNumberOfValues(n);
+    for (vtkIdType k = 0; k < n; ++k) {
+      const std::size_t b = ps.body[sel[static_cast<std::size_t>(k)]];
+      names->SetValue(k, b < body_names->size() ? (*body_names)[b] : std::string());
+    }
+    poly->GetPointData()->AddArray(names);
+  }
 
   const std::string tmp = path + ".tmp";
   vtkNew<vtkXMLPolyDataWriter> writer;
@@ -143,8 +155,8 @@ void PvdSeries::add(double time, const std::string& file) {
 }
 
 template void write_vtp<2>(const std::string&, const ParticleSet<2>&, const std::vector<double>&,
-                           ParticleFilter);
+                           ParticleFilter, const std::vector<std::string>*);
 template void write_vtp<3>(const std::string&, const ParticleSet<3>&, const std::vector<double>&,
-                           ParticleFilter);
+                           ParticleFilter, const std::vector<std::string>*);
 
 }  // namespace swell

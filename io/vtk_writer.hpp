@@ -14,10 +14,13 @@ namespace swell {
 enum class ParticleFilter { All, Fluid, Boundary };
 
 // Writes the active particles (position, velocity, density, pressure, type, body, id) to
-// `path` as binary VTK XML PolyData, through a temporary file renamed into place.
+// `path` as binary VTK XML PolyData, through a temporary file renamed into place. With
+// `body_names` (indexed by body), each point also gets its body's name (string array
+// `body_name`).
 template <int D>
 void write_vtp(const std::string& path, const ParticleSet<D>& ps,
-               const std::vector<double>& pressure, ParticleFilter filter = ParticleFilter::All);
+               const std::vector<double>& pressure, ParticleFilter filter = ParticleFilter::All,
+               const std::vector<std::string>* body_names = nullptr);
 
 // A .pvd collection, rewritten (atomically) each time a snapshot is added.
 class PvdSeries {

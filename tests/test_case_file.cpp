@@ -298,7 +298,8 @@ dp: 0.01
 time: {end: 1, dt: 0.001}
 )",
                               3, {"time.dt", "end, cfl, integrator, verlet_steps"}));
-  EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
+  EXPECT_TRUE(
+      ThrowsCaseError(R"(dim: 2
 dp: 0.01
 time: {end: 1}
 bodies:
@@ -306,7 +307,7 @@ bodies:
     kind: fluid
     colour: blue
 )",
-                              7, {"bodies[0].colour", "name, kind, shape, walls, layers, open"}));
+                      7, {"bodies[0].colour", "name, kind, shape, fill, walls, layers, open"}));
   EXPECT_TRUE(ThrowsCaseError(R"(dim: 2
 dp: 0.01
 time: {end: 1}
@@ -418,6 +419,8 @@ TEST(CaseFileErrors, MissingBodyKeys) {
   EXPECT_TRUE(ThrowsCaseError(head + "  - {name: w, shape: {box: {min: [0, 0], max: [1, 1]}}}\n", 5,
                               {"missing required key 'bodies[0].kind'"}));
   EXPECT_TRUE(ThrowsCaseError(head + "  - {name: w, kind: fluid}\n", 5,
+                              {"missing required key 'bodies[0].shape'", "bodies[0].fill"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - {name: t, kind: boundary}\n", 5,
                               {"missing required key 'bodies[0].shape'"}));
   EXPECT_TRUE(ThrowsCaseError(head + "  - {name: w, kind: fluid, shape: {box: {min: [0, 0]}}}\n", 5,
                               {"missing required key 'bodies[0].shape.box.max'"}));
@@ -521,8 +524,10 @@ TEST(CaseFileErrors, InvalidBodyValues) {
 TEST(CaseFileErrors, ShapeMustBeOneKnownKind) {
   const std::string head = "dim: 2\ndp: 0.01\ntime: {end: 1}\nbodies:\n";
   EXPECT_TRUE(
-      ThrowsCaseError(head + "  - name: w\n    kind: fluid\n    shape:\n      sphere: {r: 1}\n", 8,
-                      {"unknown shape 'bodies[0].shape.sphere'", "known shapes: box"}));
+      ThrowsCaseError(head + "  - name: w\n    kind: fluid\n    shape:\n      cone: {r: 1}\n", 8,
+                      {"unknown shape 'bodies[0].shape.cone'",
+                       "known shapes: box, cylinder, sphere, polygon, mesh, stl, union, "
+                       "difference"}));
   EXPECT_TRUE(ThrowsCaseError(
       head + "  - {name: w, kind: fluid, shape: {box: {min: [0, 0], max: [1, 1]}, stl: a.stl}}\n",
       5, {"bodies[0].shape", "exactly one shape key"}));
@@ -572,6 +577,596 @@ bodies:
   - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1, 1]}}}
 )",
                               5, {"bodies", "no fluid body", "kind: fluid"}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shapes
+
+const char* const kHead2d = "dim: 2\ndp: 0.01\ntime: {end: 1}\nbodies:\n";  // body 0 on line 5
+const char* const kHead3d = "dim: 3\ndp: 0.02\ntime: {end: 1}\nbodies:\n";
+
+// A fluid body to append after boundary bodies, so that the case is valid.
+const char* const kWater2d =
+    "  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [1, 1]}}}\n";
+const char* const kWater3d =
+    "  - {name: water, kind: fluid, shape: {box: {min: [0, 0, 0], max: [1, 1, 1]}}}\n";
+
+TEST(CaseFileShapes, ParsesEveryKindIn2d) {
+  const std::string text = std::string(kHead2d) + R"(  - name: disc
+    kind: boundary
+    shape: {cylinder: {center: [0.5, 0.25], radius: 0.1}}
+  - {name: ball, kind: boundary, shape: {sphere: {center: [0.2, 0.3], radius: 0.05}}}
+  - name: ramp
+    kind: boundary
+    shape:
+      polygon:
+        points: [[1, 0], [2, 0], [2, 0.2]]
+  - name: beach
+    kind: boundary
+    shape: {mesh: {file: geometry/flume_beach.stl, slice_y: 0.15}}
+    walls: outside
+    layers: 2
+  - name: caisson
+    kind: boundary
+    shape:
+      stl: {file: caisson.STL, scale: 0.001, rotate: [0, 0, 90], translate: [2.6, 0, 0.1], repair: true, slice_y: -0.5}
+    open: [ymax]
+)" + kWater2d;
+  const CaseSpec spec = parse_case_text(text, kLabel);
+  ASSERT_EQ(spec.bodies.size(), 6u);
+
+  const ShapeSpec& disc = spec.bodies[0].shape;
+  EXPECT_EQ(disc.type, ShapeSpec::Type::Cylinder);
+  EXPECT_EQ(disc.p1, Eigen::Vector3d(0.5, 0.25, 0.0));
+  EXPECT_DOUBLE_EQ(disc.radius, 0.1);
+  EXPECT_EQ(disc.line, 7);
+
+  const ShapeSpec& ball = spec.bodies[1].shape;
+  EXPECT_EQ(ball.type, ShapeSpec::Type::Sphere);
+  EXPECT_EQ(ball.p1, Eigen::Vector3d(0.2, 0.3, 0.0));
+  EXPECT_DOUBLE_EQ(ball.radius, 0.05);
+  EXPECT_EQ(ball.line, 8);
+
+  const ShapeSpec& ramp = spec.bodies[2].shape;
+  EXPECT_EQ(ramp.type, ShapeSpec::Type::Polygon);
+  ASSERT_EQ(ramp.points.size(), 3u);
+  EXPECT_EQ(ramp.points[0], Eigen::Vector3d(1.0, 0.0, 0.0));
+  EXPECT_EQ(ramp.points[1], Eigen::Vector3d(2.0, 0.0, 0.0));
+  EXPECT_EQ(ramp.points[2], Eigen::Vector3d(2.0, 0.2, 0.0));
+  EXPECT_EQ(ramp.line, 12);  // a block map starts at its first key
+
+  const ShapeSpec& beach = spec.bodies[3].shape;
+  EXPECT_EQ(beach.type, ShapeSpec::Type::Mesh);
+  EXPECT_EQ(beach.file, "geometry/flume_beach.stl");
+  EXPECT_EQ(beach.placement.scale, Eigen::Vector3d::Ones());  // defaults
+  EXPECT_EQ(beach.placement.rotate_deg, Eigen::Vector3d::Zero());
+  EXPECT_EQ(beach.placement.translate, Eigen::Vector3d::Zero());
+  EXPECT_FALSE(beach.repair);
+  ASSERT_TRUE(beach.slice_y.has_value());
+  EXPECT_DOUBLE_EQ(*beach.slice_y, 0.15);
+  EXPECT_EQ(beach.line, 16);
+  EXPECT_EQ(spec.bodies[3].walls, BodySpec::Walls::Outside);
+  EXPECT_EQ(spec.bodies[3].layers, 2);
+
+  // `stl:` is a synonym of `mesh:`; rotate and translate are 3-vectors even in 2D.
+  const BodySpec& caisson = spec.bodies[4];
+  EXPECT_EQ(caisson.shape.type, ShapeSpec::Type::Mesh);
+  EXPECT_EQ(caisson.shape.file, "caisson.STL");
+  EXPECT_EQ(caisson.shape.placement.scale, Eigen::Vector3d::Constant(0.001));
+  EXPECT_EQ(caisson.shape.placement.rotate_deg, Eigen::Vector3d(0.0, 0.0, 90.0));
+  EXPECT_EQ(caisson.shape.placement.translate, Eigen::Vector3d(2.6, 0.0, 0.1));
+  EXPECT_TRUE(caisson.shape.repair);
+  EXPECT_DOUBLE_EQ(*caisson.shape.slice_y, -0.5);
+  EXPECT_EQ(caisson.shape.line, 22);
+  EXPECT_EQ(caisson.open, std::vector<std::string>{"ymax"});  // open faces on any shape
+
+  EXPECT_EQ(spec.bodies[5].shape.type, ShapeSpec::Type::Box);
+  EXPECT_EQ(spec.bodies[5].shape.line, 24);
+  EXPECT_FALSE(spec.bodies[5].fill_below.has_value());
+  EXPECT_TRUE(spec.bodies[5].fill_inside.empty());
+}
+
+TEST(CaseFileShapes, ParsesEveryKindIn3d) {
+  const std::string text = std::string(kHead3d) + R"(  - name: pile
+    kind: boundary
+    shape: {cylinder: {p1: [1, 0.5, 0], p2: [1, 0.5, 0.8], radius: 0.05}}
+    walls: outside
+  - {name: ball, kind: boundary, shape: {sphere: {center: [0.2, 0.3, 0.4], radius: 0.05}}}
+  - {name: box, kind: boundary, shape: {box: {min: [0, 0, 0], max: [1, 2, 3]}}}
+  - name: beach
+    kind: boundary
+    shape:
+      mesh:
+        file: flume_beach.stl
+        scale: [1, 2, 0.5]
+        rotate: [90, 0, -45]
+        translate: [0.5, -1, 2]
+        repair: false
+  - {name: a, kind: boundary, shape: {mesh: {file: part.obj}}}
+  - {name: b, kind: boundary, shape: {stl: {file: dir.v2/part.Off}}}
+  - {name: c, kind: boundary, shape: {mesh: {file: "with space.PLY"}}}
+)" + kWater3d;
+  const CaseSpec spec = parse_case_text(text, kLabel);
+  ASSERT_EQ(spec.bodies.size(), 8u);
+
+  const ShapeSpec& pile = spec.bodies[0].shape;
+  EXPECT_EQ(pile.type, ShapeSpec::Type::Cylinder);
+  EXPECT_EQ(pile.p1, Eigen::Vector3d(1.0, 0.5, 0.0));
+  EXPECT_EQ(pile.p2, Eigen::Vector3d(1.0, 0.5, 0.8));
+  EXPECT_DOUBLE_EQ(pile.radius, 0.05);
+  EXPECT_EQ(pile.line, 7);
+
+  const ShapeSpec& ball = spec.bodies[1].shape;
+  EXPECT_EQ(ball.type, ShapeSpec::Type::Sphere);
+  EXPECT_EQ(ball.p1, Eigen::Vector3d(0.2, 0.3, 0.4));
+  EXPECT_EQ(ball.line, 9);
+
+  const ShapeSpec& box = spec.bodies[2].shape;
+  EXPECT_EQ(box.type, ShapeSpec::Type::Box);
+  EXPECT_EQ(box.box.max, Eigen::Vector3d(1.0, 2.0, 3.0));
+  EXPECT_EQ(box.line, 10);
+
+  const ShapeSpec& beach = spec.bodies[3].shape;
+  EXPECT_EQ(beach.type, ShapeSpec::Type::Mesh);
+  EXPECT_EQ(beach.file, "flume_beach.stl");
+  EXPECT_EQ(beach.placement.scale, Eigen::Vector3d(1.0, 2.0, 0.5));
+  EXPECT_EQ(beach.placement.rotate_deg, Eigen::Vector3d(90.0, 0.0, -45.0));
+  EXPECT_EQ(beach.placement.translate, Eigen::Vector3d(0.5, -1.0, 2.0));
+  EXPECT_FALSE(beach.repair);
+  EXPECT_FALSE(beach.slice_y.has_value());
+  EXPECT_EQ(beach.line, 14);
+
+  EXPECT_EQ(spec.bodies[4].shape.file, "part.obj");
+  EXPECT_EQ(spec.bodies[5].shape.type, ShapeSpec::Type::Mesh);
+  EXPECT_EQ(spec.bodies[5].shape.file, "dir.v2/part.Off");
+  EXPECT_EQ(spec.bodies[6].shape.file, "with space.PLY");
+}
+
+TEST(CaseFileShapes, ParsesNestedUnionAndDifference) {
+  const std::string text = std::string(kHead2d) + R"(  - name: harbour
+    kind: boundary
+    walls: outside
+    shape:
+      difference:
+        - union:
+            - box: {min: [0, 0], max: [1, 0.5]}
+            - {sphere: {center: [1, 0.25], radius: 0.25}}
+        - cylinder:
+            center: [0.5, 0.5]
+            radius: 0.2
+        - polygon: {points: [[0, 0], [0.2, 0], [0, 0.2]]}
+)" + kWater2d;
+  const CaseSpec spec = parse_case_text(text, kLabel);
+  const ShapeSpec& diff = spec.bodies[0].shape;
+  EXPECT_EQ(diff.type, ShapeSpec::Type::Difference);
+  EXPECT_EQ(diff.line, 9);
+  ASSERT_EQ(diff.children.size(), 3u);
+
+  const ShapeSpec& uni = diff.children[0];
+  EXPECT_EQ(uni.type, ShapeSpec::Type::Union);
+  EXPECT_EQ(uni.line, 10);
+  ASSERT_EQ(uni.children.size(), 2u);
+  EXPECT_EQ(uni.children[0].type, ShapeSpec::Type::Box);
+  EXPECT_EQ(uni.children[0].box.max, Eigen::Vector3d(1.0, 0.5, 0.0));
+  EXPECT_EQ(uni.children[0].line, 11);
+  EXPECT_EQ(uni.children[1].type, ShapeSpec::Type::Sphere);
+  EXPECT_DOUBLE_EQ(uni.children[1].radius, 0.25);
+  EXPECT_EQ(uni.children[1].line, 12);
+
+  EXPECT_EQ(diff.children[1].type, ShapeSpec::Type::Cylinder);
+  EXPECT_EQ(diff.children[1].p1, Eigen::Vector3d(0.5, 0.5, 0.0));
+  EXPECT_EQ(diff.children[1].line, 13);
+  EXPECT_EQ(diff.children[2].type, ShapeSpec::Type::Polygon);
+  EXPECT_EQ(diff.children[2].points.size(), 3u);
+  EXPECT_EQ(diff.children[2].line, 16);
+}
+
+TEST(CaseFileShapes, ParsesNestedCsgIn3d) {
+  const std::string text = std::string(kHead3d) + R"(  - name: block
+    kind: boundary
+    shape: {union: [{mesh: {file: a.stl, scale: 2}}, {difference: [{box: {min: [0, 0, 0], max: [1, 1, 1]}}, {cylinder: {p1: [0.5, 0.5, 0], p2: [0.5, 0.5, 1], radius: 0.1}}]}]}
+)" + kWater3d;
+  const CaseSpec spec = parse_case_text(text, kLabel);
+  const ShapeSpec& uni = spec.bodies[0].shape;
+  ASSERT_EQ(uni.type, ShapeSpec::Type::Union);
+  ASSERT_EQ(uni.children.size(), 2u);
+  EXPECT_EQ(uni.children[0].type, ShapeSpec::Type::Mesh);
+  EXPECT_EQ(uni.children[0].placement.scale, Eigen::Vector3d::Constant(2.0));
+  const ShapeSpec& diff = uni.children[1];
+  ASSERT_EQ(diff.type, ShapeSpec::Type::Difference);
+  ASSERT_EQ(diff.children.size(), 2u);
+  EXPECT_EQ(diff.children[1].type, ShapeSpec::Type::Cylinder);
+  EXPECT_EQ(diff.children[1].p2, Eigen::Vector3d(0.5, 0.5, 1.0));
+  for (const ShapeSpec* s : {&uni, &uni.children[0], &diff, &diff.children[0], &diff.children[1]}) {
+    EXPECT_EQ(s->line, 7);
+  }
+}
+
+TEST(CaseFileShapes, ParsesFillInsideATank) {
+  const std::string text = std::string(kHead3d) + R"(  - name: water
+    kind: fluid
+    fill: {below: 0.3, inside: tank}
+  - {name: tank, kind: boundary, shape: {box: {min: [0, 0, 0], max: [4, 0.3, 0.5]}}, open: [zmax]}
+)";
+  const CaseSpec spec = parse_case_text(text, kLabel);
+  ASSERT_EQ(spec.bodies.size(), 2u);
+  const BodySpec& water = spec.bodies[0];
+  EXPECT_EQ(water.kind, BodySpec::Kind::Fluid);
+  ASSERT_TRUE(water.fill_below.has_value());
+  EXPECT_DOUBLE_EQ(*water.fill_below, 0.3);
+  EXPECT_EQ(water.fill_inside, "tank");
+  EXPECT_EQ(water.line, 5);
+  EXPECT_FALSE(spec.bodies[1].fill_below.has_value());
+}
+
+TEST(CaseFileShapeErrors, UnknownOrAmbiguousShape) {
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + "  - {name: w, kind: fluid, shape: {cube: {size: 1}}}\n", 5,
+      {"unknown shape 'bodies[0].shape.cube'", "known shapes: box, cylinder, sphere"}));
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      union:
+        - {box: {min: [0, 0], max: [1, 1]}}
+        - {circle: {center: [0, 0], radius: 1}}
+)",
+                              10, {"unknown shape 'bodies[0].shape.union[1].circle'"}));
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      box: {min: [0, 0], max: [1, 1]}
+      sphere: {center: [0, 0], radius: 1}
+)",
+                              8,
+                              {"bodies[0].shape", "exactly one shape key", "a map with 2 keys"}));
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + "  - {name: w, kind: fluid, shape: {}}\n", 5,
+                              {"bodies[0].shape", "exactly one shape key"}));
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + "  - {name: w, kind: fluid, shape: box}\n", 5,
+                              {"bodies[0].shape", "exactly one shape key", "'box'"}));
+}
+
+TEST(CaseFileShapeErrors, PolygonOnlyIn2d) {
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead3d) + R"(  - name: w
+    kind: fluid
+    shape:
+      polygon: {points: [[0, 0, 0], [1, 0, 0], [1, 1, 0]]}
+)",
+                              8, {"bodies[0].shape.polygon", "only in 2D", "mesh"}));
+}
+
+TEST(CaseFileShapeErrors, PolygonNeedsThreePoints) {
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      polygon:
+        points: [[0, 0], [1, 0]]
+)",
+      9, {"bodies[0].shape.polygon.points", "at least 3 points", "a list of 2 items"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(std::string(kHead2d) + "  - {name: w, kind: fluid, shape: {polygon: {}}}\n",
+                      5, {"missing required key 'bodies[0].shape.polygon.points'"}));
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      polygon:
+        points:
+          - [0, 0]
+          - [1, 0, 0]
+          - [1, 1]
+)",
+                              11, {"bodies[0].shape.polygon.points[1]", "a list of 2 numbers"}));
+}
+
+TEST(CaseFileShapeErrors, PolygonMustEncloseAnArea) {
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      polygon:
+        points: [[0, 0], [1, 1], [2, 2], [3, 3]]
+)",
+                              9, {"bodies[0].shape.polygon.points", "no area", "one line"}));
+}
+
+TEST(CaseFileShapeErrors, PolygonMustBeSimple) {
+  // A bow tie: edges 0-1 and 2-3 cross.
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      polygon:
+        points: [[0, 0], [1, 1], [1, 0], [0, 1.5]]
+)",
+                              9,
+                              {"bodies[0].shape.polygon.points",
+                               "the edge from point 0 to point 1 meets the edge from point 2 to "
+                               "point 3",
+                               "simple polygon"}));
+  // A spike folding back along an edge.
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      polygon:
+        points: [[0, 0], [2, 0], [1, 0], [1, 1]]
+)",
+                              9, {"bodies[0].shape.polygon.points", "simple polygon"}));
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      polygon:
+        points:
+          - [0, 0]
+          - [1, 0]
+          - [1, 0]
+          - [0, 1]
+)",
+                              12, {"bodies[0].shape.polygon.points[2]", "repeats the previous"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      polygon:
+        points:
+          - [0, 0]
+          - [1, 0]
+          - [0, 1]
+          - [0, 0]
+)",
+      13, {"bodies[0].shape.polygon.points[3]", "repeats the first", "closes itself"}));
+}
+
+TEST(CaseFileShapeErrors, RadiusMustBePositive) {
+  EXPECT_TRUE(
+      ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      sphere:
+        center: [0, 0]
+        radius: -0.1
+)",
+                      10, {"bodies[0].shape.sphere.radius", "expected a number > 0", "'-0.1'"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) +
+          "  - {name: w, kind: fluid, shape: {cylinder: {center: [0, 0], radius: 0}}}\n",
+      5, {"bodies[0].shape.cylinder.radius", "expected a number > 0"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead3d) +
+          "  - {name: w, kind: fluid, shape: {cylinder: {p1: [0, 0, 0], p2: [0, 0, 1]}}}\n",
+      5, {"missing required key 'bodies[0].shape.cylinder.radius'"}));
+}
+
+TEST(CaseFileShapeErrors, CylinderAxisAndDimension) {
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead3d) + R"(  - name: w
+    kind: fluid
+    shape:
+      cylinder:
+        p1: [1, 0.5, 0]
+        p2: [1, 0.5, 0.0]
+        radius: 0.1
+)",
+                              10, {"bodies[0].shape.cylinder.p2", "p1 and p2 are the same point"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      cylinder:
+        p1: [0, 0]
+        p2: [0, 1]
+        radius: 0.1
+)",
+      9,
+      {"bodies[0].shape.cylinder.p1", "in a 2D case a cylinder is a disc", "center and radius"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead3d) +
+          "  - {name: w, kind: fluid, shape: {cylinder: {center: [0, 0, 0], radius: 1}}}\n",
+      5, {"bodies[0].shape.cylinder.center", "p1 and p2", "2D discs"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) +
+          "  - {name: w, kind: fluid, shape: {cylinder: {center: [0, 0], radius: 1, height: 2}}}\n",
+      5,
+      {"unknown key 'bodies[0].shape.cylinder.height'",
+       "allowed keys in bodies[0].shape.cylinder in a 2D case: center, radius"}));
+}
+
+TEST(CaseFileShapeErrors, MeshFile) {
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead3d) + R"(  - name: beach
+    kind: boundary
+    shape:
+      mesh: {scale: 0.001}
+)" + kWater3d,
+                              8, {"missing required key 'bodies[0].shape.mesh.file'"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(std::string(kHead3d) + R"(  - name: beach
+    kind: boundary
+    shape:
+      stl:
+        file: beach.step
+)" + kWater3d,
+                      9, {"bodies[0].shape.stl.file", ".stl, .obj, .off or .ply", "'beach.step'"}));
+  for (const char* bad : {"stl", ".stl", "beach.stl.bak", "beach_stl"}) {
+    EXPECT_TRUE(ThrowsCaseError(std::string(kHead3d) +
+                                    "  - {name: b, kind: boundary, shape: {mesh: {file: '" + bad +
+                                    "'}}}\n" + kWater3d,
+                                5, {"bodies[0].shape.mesh.file", ".stl, .obj, .off or .ply"}))
+        << bad;
+  }
+}
+
+TEST(CaseFileShapeErrors, MeshPlacement) {
+  const std::string head = std::string(kHead3d) +
+                           "  - name: b\n    kind: boundary\n    shape:\n"
+                           "      mesh:\n        file: b.stl\n";
+  EXPECT_TRUE(ThrowsCaseError(head + "        scale: 0\n" + kWater3d, 10,
+                              {"bodies[0].shape.mesh.scale", "a number > 0 or a list of 3"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "        scale: [1, -1, 1]\n" + kWater3d, 10,
+                              {"bodies[0].shape.mesh.scale", "a number > 0 or a list of 3"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "        scale: [1, 1]\n" + kWater3d, 10,
+                              {"bodies[0].shape.mesh.scale", "[1, 1]"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "        translate: [1, 1]\n" + kWater3d, 10,
+                              {"bodies[0].shape.mesh.translate", "a list of 3 numbers"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "        repair: maybe\n" + kWater3d, 10,
+                              {"bodies[0].shape.mesh.repair", "true or false"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "        rotation: [0, 0, 90]\n" + kWater3d, 10,
+                              {"unknown key 'bodies[0].shape.mesh.rotation'", "rotate"}));
+  // Meshes are 3D: rotate takes 3 angles in a 2D case too.
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) +
+                                  "  - {name: b, kind: boundary, shape: {mesh: {file: b.stl, "
+                                  "rotate: [0, 90], slice_y: 0}}}\n" +
+                                  kWater2d,
+                              5, {"bodies[0].shape.mesh.rotate", "a list of 3 numbers"}));
+}
+
+TEST(CaseFileShapeErrors, MeshSliceDependsOnDimension) {
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + R"(  - name: beach
+    kind: boundary
+    shape:
+      mesh:
+        file: beach.stl
+        scale: 1
+)" + kWater2d,
+      9, {"missing required key 'bodies[0].shape.mesh.slice_y'", "2D case cuts the placed mesh"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(std::string(kHead3d) + R"(  - name: beach
+    kind: boundary
+    shape:
+      mesh:
+        file: beach.stl
+        slice_y: 0.15
+)" + kWater3d,
+                      10, {"bodies[0].shape.mesh.slice_y", "only 2D cases", "leave slice_y out"}));
+}
+
+TEST(CaseFileShapeErrors, CsgNeedsTwoShapes) {
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      union:
+        - {box: {min: [0, 0], max: [1, 1]}}
+)",
+                              9, {"bodies[0].shape.union", "a list of at least 2 shapes"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + "  - {name: w, kind: fluid, shape: {difference: {box: {}}}}\n", 5,
+      {"bodies[0].shape.difference", "at least 2 shapes (the first minus all the others)"}));
+  // Errors deep inside CSG name the full path.
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: w
+    kind: fluid
+    shape:
+      difference:
+        - {box: {min: [0, 0], max: [1, 1]}}
+        - union:
+            - {box: {min: [0, 0], max: [1, 1]}}
+            - {sphere: {center: [0, 0], radius: -1}}
+)",
+                              12, {"bodies[0].shape.difference[1].union[1].sphere.radius", "> 0"}));
+}
+
+TEST(CaseFileFillErrors, ShapeAndFillAreExclusive) {
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) +
+          R"(  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1, 1]}}}
+  - name: water
+    kind: fluid
+    shape: {box: {min: [0, 0], max: [1, 0.5]}}
+    fill: {below: 0.5, inside: tank}
+)",
+      9, {"bodies[1].fill", "gives both 'shape' and 'fill'", "exactly one"}));
+  EXPECT_TRUE(ThrowsCaseError(std::string(kHead2d) + R"(  - name: tank
+    kind: boundary
+    shape: {box: {min: [0, 0], max: [1, 1]}}
+    fill: {below: 0.5, inside: tank}
+)" + kWater2d,
+                              8, {"bodies[0].fill", "only fluid bodies take 'fill'", "'tank'"}));
+}
+
+TEST(CaseFileFillErrors, FillKeys) {
+  const std::string tank =
+      "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1, 1]}}}\n";
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + tank + "  - {name: water, kind: fluid, fill: {inside: tank}}\n", 6,
+      {"missing required key 'bodies[1].fill.below'"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + tank + "  - {name: water, kind: fluid, fill: {below: 0.5}}\n", 6,
+      {"missing required key 'bodies[1].fill.inside'"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(std::string(kHead2d) + tank +
+                          "  - {name: water, kind: fluid, fill: {below: half, inside: tank}}\n",
+                      6, {"bodies[1].fill.below", "expected a number", "'half'"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + tank +
+          "  - {name: water, kind: fluid, fill: {below: 0.5, inside: tank, above: 0.1}}\n",
+      6, {"unknown key 'bodies[1].fill.above'", "below, inside"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(std::string(kHead2d) + tank + "  - {name: water, kind: fluid, fill: tank}\n",
+                      6, {"bodies[1].fill", "a map such as {below: 0.3, inside: tank}"}));
+}
+
+TEST(CaseFileFillErrors, FillNeedsATank) {
+  const std::string bodies =
+      std::string(kHead2d) +
+      R"(  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1, 1]}}}
+  - {name: block, kind: boundary, walls: outside, shape: {sphere: {center: [0.5, 0.5], radius: 0.1}}}
+  - {name: other, kind: fluid, shape: {box: {min: [0, 0], max: [0.1, 0.1]}}}
+  - name: water
+    kind: fluid
+    fill:
+      below: 0.5
+)";
+  EXPECT_TRUE(ThrowsCaseError(
+      bodies + "      inside: tnk\n", 12,
+      {"bodies[3].fill.inside", "fluid body 'water'", "there is no body named 'tnk'",
+       "boundary bodies with walls: inside: tank"}));
+  EXPECT_TRUE(ThrowsCaseError(bodies + "      inside: other\n", 12,
+                              {"bodies[3].fill.inside", "body 'other' (line 7) has kind fluid",
+                               "boundary bodies with walls: inside: tank"}));
+  EXPECT_TRUE(ThrowsCaseError(bodies + "      inside: water\n", 12,
+                              {"bodies[3].fill.inside", "body 'water' (line 8) has kind fluid"}));
+  EXPECT_TRUE(ThrowsCaseError(bodies + "      inside: block\n", 12,
+                              {"bodies[3].fill.inside", "body 'block' (line 6) has walls: outside",
+                               "boundary bodies with walls: inside: tank"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      std::string(kHead2d) + "  - {name: water, kind: fluid, fill: {below: 1, inside: w}}\n", 5,
+      {"bodies[0].fill.inside", "the case has no boundary body with walls: inside"}));
+}
+
+// The shipped cases parse; the wave flumes' meshes exist next to them (paths are relative to
+// the case file's folder).
+TEST(CaseFileShapes, ShippedCasesParse) {
+#ifdef SWELL_SOURCE_DIR
+  const std::filesystem::path cases = std::filesystem::path(SWELL_SOURCE_DIR) / "cases";
+#else
+  const std::filesystem::path cases = "cases";
+#endif
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(cases)) {
+    if (entry.path().extension() != ".yaml") continue;
+    EXPECT_NO_THROW(load_case_file(entry.path().string())) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 4);
+
+  for (const int dim : {2, 3}) {
+    const std::filesystem::path file = cases / ("wave_flume" + std::to_string(dim) + "d.yaml");
+    const CaseSpec spec = load_case_file(file.string());
+    EXPECT_EQ(spec.dim, dim);
+    ASSERT_EQ(spec.bodies.size(), 4u);
+    EXPECT_EQ(spec.bodies[0].shape.type, ShapeSpec::Type::Box);
+    for (const int i : {1, 2}) {
+      const BodySpec& body = spec.bodies[static_cast<std::size_t>(i)];
+      EXPECT_EQ(body.shape.type, ShapeSpec::Type::Mesh) << body.name;
+      EXPECT_EQ(body.walls, BodySpec::Walls::Outside) << body.name;
+      EXPECT_EQ(body.layers, 2) << body.name;
+      EXPECT_EQ(body.shape.slice_y.has_value(), dim == 2) << body.name;
+      EXPECT_TRUE(std::filesystem::is_regular_file(file.parent_path() / body.shape.file))
+          << body.shape.file;
+    }
+    EXPECT_EQ(spec.bodies[2].shape.placement.scale, Eigen::Vector3d::Constant(0.001));
+    const BodySpec& water = spec.bodies[3];
+    EXPECT_EQ(water.kind, BodySpec::Kind::Fluid);
+    ASSERT_TRUE(water.fill_below.has_value());
+    EXPECT_DOUBLE_EQ(*water.fill_below, 0.3);
+    EXPECT_EQ(water.fill_inside, "tank");
+    EXPECT_EQ(spec.gauges.size(), 3u);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,0 +1,48 @@
+// The shape interface every body geometry implements: primitives (box, cylinder, sphere,
+// polygon), CSG (union, difference) and triangle meshes read from STL/OBJ/OFF/PLY.
+//
+// Shapes are queried only while particles are created (never in the time loop), so a virtual
+// interface is fine here. Points are 3-vectors; a 2D shape lives in the z = 0 plane and
+// ignores z.
+#pragma once
+
+#include <Eigen/Core>
+#include <limits>
+#include <memory>
+#include <string>
+
+namespace swell::geometry {
+
+struct Aabb {
+  Eigen::Vector3d min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d max = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
+  void extend(const Eigen::Vector3d& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
+  void extend(const Aabb& b) {
+    min = min.cwiseMin(b.min);
+    max = max.cwiseMax(b.max);
+  }
+};
+
+class Shape {
+ public:
+  virtual ~Shape() = default;
+  // Signed distance to the surface: negative inside, positive outside. Exact (Euclidean) for
+  // curved shapes and meshes; boxes use the max-norm distance so wall layers fill corners.
+  // CSG results are the usual min/max combinations (exact sign, distance exact near the
+  // surface of one operand). Wall layers and fluid gaps only use it within a few dp.
+  virtual double signed_distance(const Eigen::Vector3d& p) const = 0;
+  virtual bool contains(const Eigen::Vector3d& p) const { return signed_distance(p) < 0.0; }
+  // Bounding box of the shape (for 2D shapes, z of both corners is 0).
+  virtual Aabb bounds() const = 0;
+  // Exact volume (area in 2D) where known, NaN otherwise.
+  virtual double volume() const { return std::numeric_limits<double>::quiet_NaN(); }
+  // Short description for reports, e.g. "box", "mesh tank.stl (1204 faces)".
+  virtual std::string describe() const = 0;
+};
+
+using ShapePtr = std::shared_ptr<const Shape>;
+
+}  // namespace swell::geometry
