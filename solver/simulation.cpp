@@ -88,12 +88,15 @@ void Simulation<D>::step() {
 
   // Density bounds (fluid): excluded and counted as DualSPHysics' RhopOut.
   const double lo = prm_.rho_min_factor * prm_.rho0, hi = prm_.rho_max_factor * prm_.rho0;
-  std::size_t out = 0;
+  // One pass also counts the fluid still in the run (no second O(N) scan per step).
+  std::size_t out = 0, fluid_left = 0;
   for (std::size_t i = 0; i < ps_.size(); ++i) {
-    if (ps_.kind[i] == Kind::Fluid && std::isfinite(ps_.rho[i]) &&
-        (ps_.rho[i] < lo || ps_.rho[i] > hi)) {
+    if (ps_.kind[i] != Kind::Fluid) continue;
+    if (std::isfinite(ps_.rho[i]) && (ps_.rho[i] < lo || ps_.rho[i] > hi)) {
       ps_.pos[i].setConstant(std::numeric_limits<double>::quiet_NaN());
       ++out;
+    } else {
+      ++fluid_left;
     }
   }
   if (out > 0) {
@@ -110,7 +113,7 @@ void Simulation<D>::step() {
         << ", first dt " << first_dt_ << " s): the run is unstable";
     throw InstabilityError(msg.str());
   }
-  if (fluid_count() == 0) throw InstabilityError("every fluid particle has been excluded");
+  if (fluid_left == 0) throw InstabilityError("every fluid particle has been excluded");
 }
 
 // Symplectic position-Verlet predictor-corrector as in DualSPHysics (Leimkuhler 1996):
