@@ -4,13 +4,17 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include "apps/case_runner.hpp"
 #include "apps/fill_command.hpp"
+#include "apps/foam_command.hpp"
 #include "apps/probe_command.hpp"
+#include "apps/validate_command.hpp"
 #include "io/case_file.hpp"
 #include "solver/simulation.hpp"
+#include "validation/validation_manifest.hpp"
 
 namespace {
 
@@ -60,6 +64,62 @@ int main(int argc, char** argv) {
   probe->add_option("--offset", probe_offset, "distance along the normal (default h)");
   probe->add_option("-o,--out", probe_out, "CSV file (default: standard output)");
 
+  swell::CompareOptions cmp;
+  std::string cmp_labels, cmp_window, cmp_peak_window;
+  double cmp_arrival = 0.0;
+  auto* compare = app.add_subcommand(
+      "compare", "metrics, plots and a report of runs' gauges against a reference CSV or run");
+  compare->add_option("runs", cmp.runs, "run folders holding gauges_*.csv")->required();
+  compare->add_option("--reference", cmp.reference, "reference CSV table, or a run folder")
+      ->required();
+  compare->add_option("--labels", cmp_labels, "comma-separated labels, one per run");
+  compare->add_option("-o,--out", cmp.out_dir, "output folder")->required();
+  compare->add_option("--map", cmp.map, "GAUGE=COLUMN: reference column of a gauge (repeatable)");
+  compare->add_option("--time-scale", cmp.time_scale, "normalise run times: t * scale")
+      ->check(CLI::PositiveNumber);
+  compare->add_option("--value-scale", cmp.value_scale, "normalise run values: v * scale")
+      ->check(CLI::PositiveNumber);
+  compare->add_option("--window", cmp_window, "metric window t0,t1 (scaled time)");
+  compare->add_option("--peak-window", cmp_peak_window, "peak window t0,t1 (default: --window)");
+  auto* cmp_arrival_opt =
+      compare->add_option("--arrival", cmp_arrival, "arrival threshold (scaled value)");
+
+  swell::ValidateOptions val;
+  std::string val_res, val_cells;
+  auto* validate = app.add_subcommand(
+      "validate", "run/compare a validation case (validation/NAME/validation.yaml) and report");
+  validate->add_option("name", val.name, "validation case name, folder or manifest file")
+      ->required();
+  validate->add_flag("--run-sph", val.run_sph, "run the SPH case (else: committed results)");
+  validate->add_flag("--run-foam", val.run_foam, "run interFoam (else: committed results)");
+  validate->add_option("--resolution", val_res, "SPH dp list d1,d2 [m] (default: manifest's)");
+  validate->add_option("--cell-size", val_cells, "OpenFOAM cell sizes c1,c2 [m]");
+  validate->add_option("-o,--out", val.out_dir, "output folder (default: out/validate/NAME)");
+  validate->add_option("-t,--threads", val.threads, "OpenMP threads for SPH runs")
+      ->check(CLI::PositiveNumber);
+  validate->add_option("--np", val.np, "OpenFOAM processes")->check(CLI::PositiveNumber);
+  validate->add_option("--end", val.end_time, "end time of fresh runs [s] (shortened runs)")
+      ->check(CLI::PositiveNumber);
+  validate->add_flag("--save-results", val.save_results,
+                     "copy fresh results into validation/NAME/results/ (to commit them)");
+
+  std::string foam_case;
+  swell::FoamOptions foam_opt;
+  auto* foam = app.add_subcommand(
+      "foam", "write an OpenFOAM interFoam case of a case file; --run runs it and converts gauges");
+  foam->add_option("case", foam_case, "case file (YAML)")->required();
+  foam->add_option("-o,--out", foam_opt.out_dir, "case folder (default: out/<case name>_foam)");
+  auto* foam_cell =
+      foam->add_option("--cell", foam_opt.cell_size, "cell size [m]")->check(CLI::PositiveNumber);
+  foam->add_option("--cells-per-dp", foam_opt.cells_per_dp, "cell = dp / K (default 1)")
+      ->check(CLI::PositiveNumber)
+      ->excludes(foam_cell);
+  foam->add_option("--end", foam_opt.end_time, "end time [s] (default: the case's)")
+      ->check(CLI::PositiveNumber);
+  foam->add_flag("--run", foam_opt.run, "run it (blockMesh ... interFoam) and convert the gauges");
+  foam->add_option("--np", foam_opt.np, "processes (decomposePar + mpirun)")
+      ->check(CLI::PositiveNumber);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -101,10 +161,39 @@ int main(int argc, char** argv) {
       const int rows = swell::run_probe(opt, std::cout);
       if (!probe_out.empty())
         std::cerr << "probe: " << rows << " snapshots -> " << probe_out << "\n";
+    } else if (*compare) {
+      auto window = [](const std::string& text, const std::string& option) {
+        const auto v = swell::parse_vector_option(text, option);
+        if (!(v[1] > v[0]) || v[2] != 0.0)
+          throw std::invalid_argument(option + ": expected t0,t1 with t1 > t0");
+        return swell::Window{v[0], v[1]};
+      };
+      if (!cmp_labels.empty()) {
+        std::stringstream in(cmp_labels);
+        for (std::string l; std::getline(in, l, ',');) cmp.labels.push_back(l);
+      }
+      if (!cmp_window.empty()) cmp.window = window(cmp_window, "--window");
+      if (!cmp_peak_window.empty()) cmp.peak_window = window(cmp_peak_window, "--peak-window");
+      if (*cmp_arrival_opt) cmp.arrival_threshold = cmp_arrival;
+      swell::run_compare(cmp, std::cerr);
+    } else if (*validate) {
+      if (!val_res.empty()) val.resolutions = swell::parse_number_list(val_res, "--resolution");
+      if (!val_cells.empty()) val.cell_sizes = swell::parse_number_list(val_cells, "--cell-size");
+      swell::run_validate(val, std::cerr);
+    } else if (*foam) {
+      const swell::CaseSpec spec = swell::load_case_file(foam_case);
+      swell::run_foam_command(spec, foam_opt, std::cout);
     }
   } catch (const swell::CaseError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitInput;
+  } catch (const swell::ManifestError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitInput;
+  } catch (const swell::FoamError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    if (e.kind() == swell::FoamError::Kind::Missing) return swell::kExitFoamMissing;
+    return e.kind() == swell::FoamError::Kind::Diverged ? kExitUnstable : kExitOther;
   } catch (const swell::InstabilityError& e) {
     std::cerr << "error: the run went unstable: " << e.what() << "\n";
     return kExitUnstable;

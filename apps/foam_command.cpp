@@ -1,0 +1,27 @@
+#include "apps/foam_command.hpp"
+
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+
+namespace swell {
+
+FoamResult run_foam_command(const CaseSpec& spec, const FoamOptions& opt_in, std::ostream& out) {
+  FoamOptions opt = opt_in;
+  if (opt.out_dir.empty()) opt.out_dir = "out/" + spec.name + "_foam";
+  const FoamResult r = opt.run ? run_foam_case(spec, opt, out) : write_foam_case(spec, opt, out);
+  out << "summary: " << r.cells << " cells of " << r.cell_size << " m, end time " << r.end_time
+      << " s\n";
+  if (r.ran) {
+    out << "  interFoam: " << r.steps << " steps in " << std::fixed << std::setprecision(1)
+        << r.wall_seconds << " s" << std::defaultfloat << " (" << (opt.np > 1 ? opt.np : 1)
+        << " process" << (opt.np > 1 ? "es" : "") << ")\n";
+    out << "  gauges: " << r.gauge_dir << "/gauges_<kind>.csv\n";
+  } else {
+    out << "  case written to " << r.case_dir << "; run it with `swell foam ... --run` or "
+        << r.case_dir << "/Allrun\n";
+  }
+  return r;
+}
+
+}  // namespace swell

@@ -1,0 +1,547 @@
+#include "apps/validate_command.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "apps/case_runner.hpp"
+#include "io/case_file.hpp"
+#include "validation/foam.hpp"
+#include "validation/validation_manifest.hpp"
+#include "validation/validation_report.hpp"
+
+namespace swell {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string now_utc() {
+  const std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+  return buf;
+}
+
+std::string safe_file_name(const std::string& s) {
+  std::string out;
+  for (const char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-') ? c : '_';
+  return out;
+}
+
+std::string seconds_text(double s) {
+  if (!std::isfinite(s)) return "–";
+  if (s < 120.0) return format_number(s, 3) + " s";
+  return format_number(s / 60.0, 3) + " min";
+}
+
+bool has_gauges(const std::string& dir) {
+  if (!fs::is_directory(dir)) return false;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string n = e.path().filename().string();
+    if (n.rfind("gauges_", 0) == 0 && e.path().extension() == ".csv") return true;
+  }
+  return false;
+}
+
+// The reference column for `gauge` in `table`: an explicit mapping, the gauge's own name, or
+// a column ending in "_<gauge>"; "" if none.
+std::string match_column(const SeriesTable& table, const std::string& gauge,
+                         const std::map<std::string, std::string>& map) {
+  if (const auto it = map.find(gauge); it != map.end()) return it->second;
+  if (table.find(gauge) >= 0) return gauge;
+  const std::string suffix = "_" + gauge;
+  for (const auto& c : table.columns)
+    if (c.size() > suffix.size() && c.compare(c.size() - suffix.size(), suffix.size(), suffix) == 0)
+      return c;
+  return "";
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw std::runtime_error(path + ": cannot write");
+}
+
+}  // namespace
+
+std::vector<double> parse_number_list(const std::string& text, const std::string& option) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const double v = std::stod(item, &used);
+      if (used != item.size() || !(v > 0.0)) throw std::invalid_argument(item);
+      out.push_back(v);
+    } catch (const std::exception&) {
+      throw std::invalid_argument(option + ": '" + item + "' is not a number > 0");
+    }
+  }
+  if (out.empty()) throw std::invalid_argument(option + ": expected numbers, got '" + text + "'");
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// swell compare
+
+CompareSummary run_compare(const CompareOptions& opt, std::ostream& log) {
+  if (opt.runs.empty()) throw std::invalid_argument("compare: give at least one run folder");
+  if (opt.reference.empty()) throw std::invalid_argument("compare: --reference FILE is required");
+  if (opt.out_dir.empty()) throw std::invalid_argument("compare: -o DIR is required");
+  if (!opt.labels.empty() && opt.labels.size() != opt.runs.size())
+    throw std::invalid_argument("compare: " + std::to_string(opt.labels.size()) + " labels for " +
+                                std::to_string(opt.runs.size()) + " runs");
+  std::map<std::string, std::string> map;
+  for (const auto& m : opt.map) {
+    const auto eq = m.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == m.size())
+      throw std::invalid_argument("--map '" + m + "': expected GAUGE=COLUMN");
+    map[m.substr(0, eq)] = m.substr(eq + 1);
+  }
+
+  // The reference: a table, or a run whose gauge series are the columns.
+  const bool ref_is_run = fs::is_directory(opt.reference);
+  SeriesTable ref_table;
+  std::vector<Series> ref_run;
+  if (ref_is_run) {
+    ref_run = read_run_gauges(opt.reference);
+    ref_table.path = opt.reference;
+    for (const auto& s : ref_run) ref_table.columns.push_back(s.name);
+  } else {
+    ref_table = read_series_table(opt.reference);
+  }
+  const std::string ref_name = fs::path(opt.reference).filename().string();
+
+  std::vector<RunData> runs;
+  for (std::size_t i = 0; i < opt.runs.size(); ++i) {
+    std::string label =
+        opt.labels.empty() ? fs::path(opt.runs[i]).filename().string() : opt.labels[i];
+    if (label.empty()) label = "run" + std::to_string(i + 1);
+    runs.push_back(load_run(label, opt.runs[i]));
+  }
+
+  Normalisation norm;
+  norm.name = "compare";
+  norm.time_scale = opt.time_scale;
+  norm.value_scale = opt.value_scale;
+  MetricRequest req;
+  req.window = opt.window;
+  req.peak = true;
+  req.peak_window = opt.peak_window ? *opt.peak_window : opt.window;
+  req.arrival = opt.arrival_threshold.has_value();
+  req.arrival_threshold = opt.arrival_threshold.value_or(0.0);
+  req.relative = true;
+
+  std::vector<MetricRow> rows;
+  std::vector<PlotSpec> plots;
+  std::vector<std::string> gauges;  // in first-seen order
+  for (const auto& r : runs)
+    for (const auto& s : r.gauges)
+      if (std::find(gauges.begin(), gauges.end(), s.name) == gauges.end()) gauges.push_back(s.name);
+  std::vector<std::string> unmatched;
+  for (const auto& g : gauges) {
+    const std::string column = match_column(ref_table, g, map);
+    if (column.empty()) {
+      unmatched.push_back(g);
+      continue;
+    }
+    Series ref;
+    if (ref_is_run) {
+      for (const auto& s : ref_run)
+        if (s.name == column) ref = scaled(s, opt.time_scale, opt.value_scale);
+    } else {
+      ref = ref_table.series(column);
+    }
+    PlotSpec plot;
+    plot.png = safe_file_name(g) + ".png";
+    plot.title = g + " against " + ref_name;
+    plot.xlabel = opt.time_scale == 1.0 ? "t [s]" : "t x " + format_number(opt.time_scale, 5);
+    plot.ylabel = g;
+    plot.window = opt.window;
+    plot.peak_window = opt.peak_window ? *opt.peak_window : Window{};
+    PlotLine rl;
+    rl.label = ref_name + ":" + column;
+    rl.file = ref.source;
+    rl.column = column;
+    rl.reference = true;
+    if (ref_is_run) {
+      rl.time_scale = opt.time_scale;
+      rl.value_scale = opt.value_scale;
+    }
+    plot.lines.push_back(rl);
+    for (const auto& r : runs) {
+      const Series* s = r.find(g);
+      if (!s) continue;
+      MetricRow row;
+      row.run = r.label;
+      row.kind = r.info.kind;
+      row.resolution = r.info.resolution;
+      row.gauge = g;
+      row.reference = ref_name;
+      row.reference_label = column;
+      row.norm = norm;
+      row.m = compute_metrics(scaled(*s, opt.time_scale, opt.value_scale), ref, req);
+      rows.push_back(row);
+      plot.lines.push_back({r.label, s->source, g, opt.time_scale, opt.value_scale, false});
+    }
+    plots.push_back(plot);
+  }
+  if (rows.empty())
+    throw std::invalid_argument("compare: no gauge of the runs has a column in " + opt.reference +
+                                " (use --map GAUGE=COLUMN)");
+
+  fs::create_directories(opt.out_dir);
+  CompareSummary sum;
+  sum.rows = static_cast<int>(rows.size());
+  sum.metrics_csv = (fs::path(opt.out_dir) / "metrics.csv").string();
+  write_metrics_csv(sum.metrics_csv, rows, "swell compare against " + opt.reference);
+  std::string why;
+  sum.plots = make_plots(plots, (fs::path(opt.out_dir) / "plots").string(), &why);
+  if (!sum.plots) log << "compare: plots skipped: " << why << "\n";
+
+  std::ostringstream md;
+  md << "# Comparison against " << ref_name << "\n\n"
+     << "Generated by `swell compare` on " << now_utc() << ". Reference: `" << opt.reference
+     << "`.\n\n| run | folder |\n|---|---|\n";
+  for (const auto& r : runs) md << "| " << r.label << " | `" << r.dir << "` |\n";
+  md << "\nRun series scaled by t x " << format_number(opt.time_scale, 6) << ", value x "
+     << format_number(opt.value_scale, 6) << "; metric window [" << format_number(opt.window.t0)
+     << ", " << format_number(opt.window.t1) << "]. NRMSE = RMS difference at the reference "
+     << "samples / reference peak-to-peak; relative errors |run - ref|/|ref| at the reference "
+        "samples; peaks are the maxima in the peak window.\n\n## Metrics\n\n"
+     << markdown_metrics_table(rows) << "\n";
+  if (!unmatched.empty()) {
+    md << "Gauges without a reference column (not compared):";
+    for (const auto& g : unmatched) md << " " << g;
+    md << ".\n\n";
+  }
+  md << "## Plots\n\n";
+  if (sum.plots) {
+    for (const auto& p : plots) md << "![" << p.title << "](plots/" << p.png << ")\n\n";
+  } else {
+    md << "Plots skipped: " << why << "\n";
+  }
+  sum.report = (fs::path(opt.out_dir) / "report.md").string();
+  write_text(sum.report, md.str());
+  log << "compare: " << rows.size() << " comparisons -> " << sum.metrics_csv << ", " << sum.report
+      << "\n";
+  return sum;
+}
+
+// ---------------------------------------------------------------------------------------------
+// swell validate
+
+namespace {
+
+struct ValidationRun {
+  RunData data;
+  std::string source;  // "fresh" | "committed"
+};
+
+// Runs the SPH case at `dp` into `dir` and records run_info.yaml there.
+void run_sph(const Manifest& m, double dp, double end_time, const std::string& dir, int threads,
+             bool progress, std::ostream& log) {
+  const CaseSpec spec = load_manifest_case(m, dp, end_time);
+  log << "validate: SPH " << spec.name << " at dp = " << dp << " m -> " << dir << "\n";
+  RunOptions ro;
+  ro.out_dir = dir;
+  ro.threads = threads;
+  ro.progress = progress;
+  std::ostringstream summary;
+  ro.log = &summary;
+  const RunSummary s = run_case(spec, ro);
+  RunInfo info;
+  info.kind = "sph";
+  info.resolution = dp;
+  info.wall_seconds = s.wall_seconds;
+  info.size = static_cast<long>(s.fluid + s.boundary);
+  info.end_time = s.sim_time;
+  info.date = now_utc();
+  info.note = std::to_string(s.fluid) + " fluid + " + std::to_string(s.boundary) +
+              " boundary particles, " + std::to_string(s.steps) + " steps";
+  write_run_info(dir, info);
+}
+
+// Runs interFoam at `cell` into `dir`/case and puts its gauges and run_info.yaml in `dir`.
+void run_foam(const Manifest& m, double cell, double end_time, const std::string& dir, int np,
+              std::ostream& log) {
+  const CaseSpec spec = load_manifest_case(m, 0.0, end_time);
+  FoamOptions fo;
+  fo.out_dir = (fs::path(dir) / "case").string();
+  fo.cell_size = cell;
+  fo.run = true;
+  fo.np = np;
+  const double t_end = end_time > 0.0 ? end_time : (m.end_time ? *m.end_time : -1.0);
+  fo.end_time = t_end;
+  log << "validate: interFoam " << spec.name << " at " << cell << " m cells -> " << dir << "\n";
+  const FoamResult r = run_foam_case(spec, fo, log);
+  copy_results(r.gauge_dir, dir);
+  RunInfo info;
+  info.kind = "openfoam";
+  info.resolution = cell;
+  info.wall_seconds = r.wall_seconds;
+  info.size = r.cells;
+  info.end_time = r.end_time;
+  info.date = now_utc();
+  info.note =
+      "interFoam, " + std::to_string(r.steps) + " steps, " + std::to_string(np) + " process(es)";
+  write_run_info(dir, info);
+}
+
+bool target_applies(const ManifestTarget& t, const std::string& kind) {
+  return t.runs == "all" || t.runs == kind;
+}
+
+std::string bound_text(const ManifestTarget& t) {
+  std::string s;
+  if (t.max_abs) s += "|v| <= " + format_number(*t.max_abs);
+  if (t.max) s += std::string(s.empty() ? "" : ", ") + "v <= " + format_number(*t.max);
+  if (t.min) s += std::string(s.empty() ? "" : ", ") + "v >= " + format_number(*t.min);
+  return s;
+}
+
+bool target_met(const ManifestTarget& t, double v) {
+  if (!std::isfinite(v)) return false;
+  if (t.max_abs && std::abs(v) > *t.max_abs) return false;
+  if (t.max && v > *t.max) return false;
+  if (t.min && v < *t.min) return false;
+  return true;
+}
+
+}  // namespace
+
+ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
+  const Manifest m = load_manifest(find_manifest(opt.name, opt.search_root));
+  const std::string out = opt.out_dir.empty() ? "out/validate/" + m.name : opt.out_dir;
+  fs::create_directories(out);
+  ValidateSummary sum;
+
+  std::vector<double> dps = opt.resolutions.empty() ? m.sph_resolutions : opt.resolutions;
+  if (dps.empty()) dps.push_back(load_manifest_case(m).dp);
+  const std::vector<double> cells = opt.cell_sizes.empty() ? m.foam_cell_sizes : opt.cell_sizes;
+
+  std::vector<ValidationRun> runs;
+  auto take = [&](const std::string& label, const std::string& fresh, bool ran) {
+    const std::string committed = (fs::path(m.results_dir) / label).string();
+    if (ran && has_gauges(fresh)) {
+      if (opt.save_results) {
+        copy_results(fresh, committed);
+        log << "validate: saved " << label << " -> " << committed << "\n";
+      }
+      runs.push_back({load_run(label, fresh), "fresh"});
+    } else if (has_gauges(committed)) {
+      runs.push_back({load_run(label, committed), "committed"});
+    } else {
+      sum.notes.push_back("no results for " + label + " (neither run now nor committed in " +
+                          committed + ")");
+    }
+  };
+
+  for (const double dp : dps) {
+    const std::string label = sph_label(dp), dir = (fs::path(out) / "runs" / label).string();
+    bool ran = false;
+    if (opt.run_sph) {
+      try {
+        run_sph(m, dp, opt.end_time, dir, opt.threads, opt.progress, log);
+        ran = true;
+      } catch (const InstabilityError& e) {
+        const std::string note =
+            "SPH at dp = " + format_number(dp) + " m went unstable: " + e.what();
+        log << "validate: " << note << "\n";
+        sum.notes.push_back(note);
+      }
+    }
+    take(label, dir, ran);
+  }
+  bool foam_ok = opt.run_foam;
+  if (opt.run_foam && !cells.empty()) {
+    std::string why;
+    if (!openfoam_available(&why)) {
+      foam_ok = false;
+      const std::string note = "--run-foam: OpenFOAM is not available here (" + why +
+                               "); the committed OpenFOAM results are used instead";
+      log << "validate: " << note << "\n";
+      sum.notes.push_back(note);
+    }
+  }
+  for (const double cell : cells) {
+    const std::string label = foam_label(cell), dir = (fs::path(out) / "runs" / label).string();
+    bool ran = false;
+    if (foam_ok) {
+      try {
+        run_foam(m, cell, opt.end_time, dir, opt.np, log);
+        ran = true;
+      } catch (const FoamError& e) {
+        const std::string note = "interFoam at " + format_number(cell) + " m failed: " + e.what();
+        log << "validate: " << note << "\n";
+        sum.notes.push_back(note);
+      }
+    }
+    take(label, dir, ran);
+  }
+
+  // The finest OpenFOAM result is the "openfoam" reference of the SPH runs (and of the
+  // coarser OpenFOAM runs: mesh convergence).
+  const ValidationRun* finest_foam = nullptr;
+  for (const auto& r : runs)
+    if (r.data.info.kind == "openfoam" &&
+        (!finest_foam || r.data.info.resolution < finest_foam->data.info.resolution))
+      finest_foam = &r;
+
+  std::map<std::string, SeriesTable> tables;
+  auto table = [&](const std::string& file) -> const SeriesTable& {
+    auto it = tables.find(file);
+    if (it == tables.end()) it = tables.emplace(file, read_series_table(file)).first;
+    return it->second;
+  };
+
+  std::vector<MetricRow> rows;
+  std::vector<PlotSpec> plots;
+  for (const auto& g : m.gauges) {
+    const Normalisation& norm = m.normalisations.at(g.normalisation);
+    PlotSpec plot;
+    plot.png = safe_file_name(g.gauge) + ".png";
+    plot.title = m.title + ": " + g.gauge;
+    plot.xlabel = norm.time_label;
+    plot.ylabel = norm.value_label.empty() ? g.gauge : norm.value_label;
+    plot.window = g.request.window;
+    if (g.request.peak) plot.peak_window = g.request.peak_window;
+    std::vector<std::pair<std::string, Series>> refs;  // (reference name, normalised series)
+    for (const auto& [ref_name, column] : g.columns) {
+      const ManifestReference* ref = m.reference(ref_name);
+      refs.emplace_back(ref_name, table(ref->file).series(column));
+      plot.lines.push_back({ref->label, ref->file, column, 1.0, 1.0, true});
+    }
+    for (const auto& r : runs) {
+      const Series* s = r.data.find(g.gauge);
+      if (!s) {
+        sum.notes.push_back(r.data.label + " has no gauge " + g.gauge);
+        continue;
+      }
+      const Series run_norm = scaled(*s, norm.time_scale, norm.value_scale);
+      plot.lines.push_back(
+          {r.data.label, s->source, g.gauge, norm.time_scale, norm.value_scale, false});
+      MetricRow base;
+      base.run = r.data.label;
+      base.kind = r.data.info.kind;
+      base.resolution = r.data.info.resolution;
+      base.gauge = g.gauge;
+      base.norm = norm;
+      for (const auto& [ref_name, ref_series] : refs) {
+        MetricRow row = base;
+        row.reference = ref_name;
+        row.reference_label = m.reference(ref_name)->label;
+        row.m = compute_metrics(run_norm, ref_series, g.request);
+        rows.push_back(row);
+      }
+      if (finest_foam && &r != finest_foam) {
+        if (const Series* f = finest_foam->data.find(g.gauge)) {
+          MetricRow row = base;
+          row.reference = "openfoam";
+          row.reference_label = finest_foam->data.label;
+          row.m =
+              compute_metrics(run_norm, scaled(*f, norm.time_scale, norm.value_scale), g.request);
+          rows.push_back(row);
+        }
+      }
+    }
+    plots.push_back(plot);
+  }
+
+  // Targets: every applicable run, reported, never used to change anything.
+  struct TargetResult {
+    const ManifestTarget* t;
+    std::string run;
+    double value;
+    bool pass;
+  };
+  std::vector<TargetResult> target_results;
+  for (const auto& t : m.targets) {
+    bool any = false;
+    for (const auto& row : rows) {
+      if (row.gauge != t.gauge || row.reference != t.against || !target_applies(t, row.kind))
+        continue;
+      const double v = row_value(row, t.metric);
+      const bool pass = target_met(t, v);
+      target_results.push_back({&t, row.run, v, pass});
+      (pass ? sum.targets_pass : sum.targets_fail)++;
+      any = true;
+    }
+    if (!any) {
+      target_results.push_back({&t, "", std::numeric_limits<double>::quiet_NaN(), false});
+      sum.targets_missing++;
+    }
+  }
+
+  sum.rows = static_cast<int>(rows.size());
+  sum.metrics_csv = (fs::path(out) / "metrics.csv").string();
+  write_metrics_csv(sum.metrics_csv, rows, "swell validate " + m.name + ": " + m.title);
+  std::string why;
+  sum.plots = make_plots(plots, (fs::path(out) / "plots").string(), &why);
+  if (!sum.plots) {
+    log << "validate: plots skipped: " << why << "\n";
+    sum.notes.push_back("plots skipped: " + why);
+  }
+
+  // The one-page report.
+  std::ostringstream md;
+  md << "# Validation: " << m.title << "\n\n"
+     << "Generated by `swell validate " << m.name << "` on " << now_utc() << ". Case `"
+     << m.case_file << "`, manifest `" << m.file << "`.\n\n";
+  if (!m.notes.empty()) md << m.notes << "\n\n";
+  md << "## Runs\n\n| run | solver | resolution [m] | particles / cells | simulated [s] | "
+        "wall time | results |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& r : runs) {
+    const RunInfo& i = r.data.info;
+    md << "| " << r.data.label << " | " << (i.kind == "openfoam" ? "interFoam" : "SPH") << " | "
+       << format_number(i.resolution, 4) << " | " << i.size << " | " << format_number(i.end_time, 3)
+       << " | " << seconds_text(i.wall_seconds) << " | " << r.source << " |\n";
+  }
+  md << "\n";
+  if (!m.targets.empty()) {
+    md << "## Targets (reported, not tuned to)\n\n| target | gauge | against | run | metric | "
+          "value | bound | result |\n|---|---|---|---|---|---|---|---|\n";
+    for (const auto& tr : target_results) {
+      md << "| " << tr.t->text << " | " << tr.t->gauge << " | " << tr.t->against << " | "
+         << (tr.run.empty() ? "–" : tr.run) << " | " << tr.t->metric << " | "
+         << format_number(tr.value) << " | " << bound_text(*tr.t) << " | "
+         << (tr.run.empty() ? "no result" : (tr.pass ? "pass" : "**fail**")) << " |\n";
+    }
+    md << "\n";
+  }
+  md << "## Metrics\n\n";
+  for (const auto& [key, n] : m.normalisations)
+    md << "- `" << key << "`: " << n.time_label << ", " << n.value_label << "\n";
+  md << "\nNRMSE = RMS(run - reference) at the reference samples in the gauge's window / the "
+        "reference's peak-to-peak range there; peaks are the maxima in the peak window (error "
+        "relative to the reference peak); arrival = first crossing of the threshold; relative "
+        "errors = |run - ref|/|ref| at the reference samples. `openfoam` = the finest interFoam "
+        "run. All values normalised; time errors in seconds.\n\n"
+     << markdown_metrics_table(rows) << "\n## Plots\n\n";
+  if (sum.plots) {
+    for (const auto& p : plots) md << "![" << p.title << "](plots/" << p.png << ")\n\n";
+  } else {
+    md << "Plots skipped: " << why << "\n\n";
+  }
+  if (!sum.notes.empty()) {
+    md << "## Notes\n\n";
+    for (const auto& n : sum.notes) md << "- " << n << "\n";
+  }
+  sum.report = (fs::path(out) / "report.md").string();
+  write_text(sum.report, md.str());
+  log << "validate " << m.name << ": " << runs.size() << " runs, " << rows.size()
+      << " comparisons; targets: " << sum.targets_pass << " pass, " << sum.targets_fail << " fail, "
+      << sum.targets_missing << " without result -> " << sum.report << "\n";
+  return sum;
+}
+
+}  // namespace swell

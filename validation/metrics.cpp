@@ -1,0 +1,286 @@
+#include "validation/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace swell {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> split_commas(const std::string& line) {
+  std::vector<std::string> cells;
+  std::string cell;
+  std::istringstream in(line);
+  while (std::getline(in, cell, ',')) cells.push_back(trim(cell));
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+// "P1 [Pa]" -> {"P1", "Pa"}; "t_star" -> {"t_star", ""}.
+std::pair<std::string, std::string> split_unit(const std::string& header) {
+  const auto open = header.rfind('[');
+  const auto close = header.rfind(']');
+  if (open == std::string::npos || close == std::string::npos || close < open)
+    return {trim(header), ""};
+  return {trim(header.substr(0, open)), trim(header.substr(open + 1, close - open - 1))};
+}
+
+double parse_cell(const std::string& cell, const std::string& path, int line) {
+  if (cell.empty()) return kNaN;
+  if (cell == "nan" || cell == "NaN" || cell == "-nan") return kNaN;
+  // strtod, not stod: a denormal such as 6.4e-322 is a valid (tiny) value, not an error.
+  char* end = nullptr;
+  const double v = std::strtod(cell.c_str(), &end);
+  if (end == cell.c_str() || *end != '\0')
+    throw std::runtime_error(path + ":" + std::to_string(line) + ": '" + cell +
+                             "' is not a number");
+  return v;
+}
+
+}  // namespace
+
+int SeriesTable::find(const std::string& name) const {
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    if (columns[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+Series SeriesTable::series(const std::string& name) const {
+  const int c = find(name);
+  if (c < 0) {
+    std::string have;
+    for (const auto& n : columns) have += (have.empty() ? "" : ", ") + n;
+    throw std::invalid_argument(path + ": no column '" + name + "' (columns: " + have + ")");
+  }
+  Series s;
+  s.name = name;
+  s.unit = units[c];
+  s.source = path;
+  for (std::size_t r = 0; r < time.size(); ++r) {
+    const double v = values[c][r];
+    if (!std::isfinite(v) || !std::isfinite(time[r])) continue;
+    s.t.push_back(time[r]);
+    s.v.push_back(v);
+  }
+  return s;
+}
+
+SeriesTable read_series_table(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot read the file");
+  SeriesTable table;
+  table.path = path;
+  std::string line;
+  int number = 0;
+  bool have_header = false;
+  while (std::getline(in, line)) {
+    ++number;
+    const std::string text = trim(line);
+    if (text.empty()) continue;
+    if (text[0] == '#') {
+      table.comments.push_back(trim(text.substr(1)));
+      continue;
+    }
+    const auto cells = split_commas(text);
+    if (!have_header) {
+      if (cells.size() < 2)
+        throw std::runtime_error(path + ":" + std::to_string(number) +
+                                 ": expected a header 'time,<column>,...'");
+      table.time_column = split_unit(cells[0]).first;
+      for (std::size_t i = 1; i < cells.size(); ++i) {
+        auto [name, unit] = split_unit(cells[i]);
+        table.columns.push_back(name);
+        table.units.push_back(unit);
+      }
+      table.values.resize(table.columns.size());
+      have_header = true;
+      continue;
+    }
+    if (cells.size() > table.columns.size() + 1)
+      throw std::runtime_error(path + ":" + std::to_string(number) + ": " +
+                               std::to_string(cells.size()) + " cells, the header has " +
+                               std::to_string(table.columns.size() + 1));
+    table.time.push_back(parse_cell(cells[0], path, number));
+    for (std::size_t c = 0; c < table.columns.size(); ++c)
+      table.values[c].push_back(c + 1 < cells.size() ? parse_cell(cells[c + 1], path, number)
+                                                     : kNaN);
+  }
+  if (!have_header) throw std::runtime_error(path + ": no header line (the file holds no data)");
+  return table;
+}
+
+std::vector<Series> read_run_gauges(const std::string& run_dir) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(run_dir)) throw std::runtime_error(run_dir + ": not a folder");
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(run_dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("gauges_", 0) == 0 && e.path().extension() == ".csv")
+      files.push_back(e.path().string());
+  }
+  if (files.empty())
+    throw std::runtime_error(run_dir + ": no gauges_*.csv files (is this a run's output folder?)");
+  std::sort(files.begin(), files.end());
+  std::vector<Series> all;
+  for (const auto& f : files) {
+    const SeriesTable t = read_series_table(f);
+    for (const auto& c : t.columns) all.push_back(t.series(c));
+  }
+  return all;
+}
+
+double interpolate(const Series& s, double t) {
+  if (s.t.empty() || !(t >= s.t.front()) || !(t <= s.t.back())) return kNaN;
+  const auto it = std::upper_bound(s.t.begin(), s.t.end(), t);
+  if (it == s.t.end()) return s.v.back();
+  const std::size_t i = static_cast<std::size_t>(it - s.t.begin());
+  if (i == 0) return s.v.front();
+  const double t0 = s.t[i - 1], t1 = s.t[i];
+  if (t1 <= t0) return s.v[i];
+  const double w = (t - t0) / (t1 - t0);
+  return (1.0 - w) * s.v[i - 1] + w * s.v[i];
+}
+
+Series scaled(const Series& s, double time_scale, double value_scale) {
+  Series out = s;
+  for (auto& t : out.t) t *= time_scale;
+  for (auto& v : out.v) v *= value_scale;
+  return out;
+}
+
+RmsResult rms_error(const Series& s, const Series& ref, Window w) {
+  RmsResult r;
+  double sum = 0.0, lo = kNaN, hi = kNaN;
+  for (std::size_t i = 0; i < ref.t.size(); ++i) {
+    if (!w.contains(ref.t[i]) || !std::isfinite(ref.v[i])) continue;
+    const double v = interpolate(s, ref.t[i]);
+    if (!std::isfinite(v)) continue;
+    sum += (v - ref.v[i]) * (v - ref.v[i]);
+    lo = r.samples == 0 ? ref.v[i] : std::min(lo, ref.v[i]);
+    hi = r.samples == 0 ? ref.v[i] : std::max(hi, ref.v[i]);
+    ++r.samples;
+  }
+  if (r.samples == 0) return r;
+  r.rms = std::sqrt(sum / r.samples);
+  r.range = hi - lo;
+  r.nrmse = r.range > 0.0 ? r.rms / r.range : kNaN;
+  return r;
+}
+
+Peak window_peak(const Series& s, Window w) {
+  Peak p;
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    if (!w.contains(s.t[i]) || !std::isfinite(s.v[i])) continue;
+    if (!std::isfinite(p.value) || s.v[i] > p.value) {
+      p.value = s.v[i];
+      p.time = s.t[i];
+    }
+  }
+  return p;
+}
+
+double arrival_time(const Series& s, double threshold, Window w) {
+  bool have_previous = false;
+  double t_prev = 0.0, v_prev = 0.0;
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    if (!w.contains(s.t[i]) || !std::isfinite(s.v[i])) continue;
+    if (s.v[i] > threshold) {
+      if (!have_previous) return s.t[i];
+      return t_prev + (threshold - v_prev) / (s.v[i] - v_prev) * (s.t[i] - t_prev);
+    }
+    have_previous = true;
+    t_prev = s.t[i];
+    v_prev = s.v[i];
+  }
+  return kNaN;
+}
+
+RelativeError relative_error(const Series& s, const Series& ref, Window w, double min_reference) {
+  RelativeError r;
+  double sum_abs = 0.0, sum = 0.0;
+  for (std::size_t i = 0; i < ref.t.size(); ++i) {
+    if (!w.contains(ref.t[i]) || !std::isfinite(ref.v[i])) continue;
+    if (std::abs(ref.v[i]) < min_reference) continue;
+    const double v = interpolate(s, ref.t[i]);
+    if (!std::isfinite(v)) continue;
+    const double e = (v - ref.v[i]) / std::abs(ref.v[i]);
+    sum_abs += std::abs(e);
+    sum += e;
+    if (r.samples == 0 || std::abs(e) > r.max_abs) {
+      r.max_abs = std::abs(e);
+      r.max_signed = e;
+      r.max_at = ref.t[i];
+    }
+    ++r.samples;
+  }
+  if (r.samples > 0) {
+    r.mean_abs = sum_abs / r.samples;
+    r.mean_signed = sum / r.samples;
+  }
+  return r;
+}
+
+GaugeMetrics compute_metrics(const Series& s, const Series& ref, const MetricRequest& req) {
+  GaugeMetrics m;
+  m.rms = rms_error(s, ref, req.window);
+  if (req.peak) {
+    m.peak = window_peak(s, req.peak_window);
+    m.ref_peak = window_peak(ref, req.peak_window);
+    if (std::isfinite(m.peak.value) && std::isfinite(m.ref_peak.value) && m.ref_peak.value != 0.0)
+      m.peak_error = (m.peak.value - m.ref_peak.value) / std::abs(m.ref_peak.value);
+    m.peak_time_error = m.peak.time - m.ref_peak.time;
+  }
+  if (req.arrival) {
+    m.arrival = arrival_time(s, req.arrival_threshold, req.window);
+    m.ref_arrival = arrival_time(ref, req.arrival_threshold, req.window);
+    m.arrival_error = m.arrival - m.ref_arrival;
+  }
+  if (req.relative) m.rel = relative_error(s, ref, req.window, req.min_reference);
+  return m;
+}
+
+const std::vector<std::string>& metric_names() {
+  static const std::vector<std::string> names = {
+      "samples",        "nrmse",         "rms",
+      "peak",           "ref_peak",      "peak_error",
+      "peak_time",      "ref_peak_time", "peak_time_error",
+      "arrival",        "ref_arrival",   "arrival_error",
+      "mean_rel_error", "max_rel_error", "mean_signed_rel_error"};
+  return names;
+}
+
+double metric_value(const GaugeMetrics& m, const std::string& name) {
+  if (name == "samples") return m.rms.samples;
+  if (name == "nrmse") return m.rms.nrmse;
+  if (name == "rms") return m.rms.rms;
+  if (name == "peak") return m.peak.value;
+  if (name == "ref_peak") return m.ref_peak.value;
+  if (name == "peak_error") return m.peak_error;
+  if (name == "peak_time") return m.peak.time;
+  if (name == "ref_peak_time") return m.ref_peak.time;
+  if (name == "peak_time_error") return m.peak_time_error;
+  if (name == "arrival") return m.arrival;
+  if (name == "ref_arrival") return m.ref_arrival;
+  if (name == "arrival_error") return m.arrival_error;
+  if (name == "mean_rel_error") return m.rel.mean_abs;
+  if (name == "max_rel_error") return m.rel.max_abs;
+  if (name == "mean_signed_rel_error") return m.rel.mean_signed;
+  std::string known;
+  for (const auto& n : metric_names()) known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("unknown metric '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace swell
