@@ -3,10 +3,12 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <iostream>
 #include <sstream>
 #include <string>
 
+#include "apps/bench_command.hpp"
 #include "apps/case_runner.hpp"
 #include "apps/fill_command.hpp"
 #include "apps/foam_command.hpp"
@@ -120,6 +122,31 @@ int main(int argc, char** argv) {
   foam->add_option("--np", foam_opt.np, "processes (decomposePar + mpirun)")
       ->check(CLI::PositiveNumber);
 
+  swell::BenchOptions bench_opt;
+  swell::BenchSingleOptions bench_single;
+  std::string bench_threads, bench_sweep_dp;
+  auto* bench = app.add_subcommand(
+      "bench", "performance benchmark: B2D, B3D (DualSPHysics' cases), 1 and 2 threads, scaling");
+  bench->add_option("cases", bench_opt.cases, "b2d, b3d, b3d_fine (default: all three)")
+      ->check(CLI::IsMember({"b2d", "b3d", "b3d_fine"}));
+  bench->add_option("--threads", bench_threads, "thread counts t1,t2 (default 1,2)");
+  bench->add_option("--repeats", bench_opt.repeats, "runs per point; medians are reported")
+      ->check(CLI::PositiveNumber);
+  bench->add_flag("--sweep", bench_opt.sweep, "B3D over dp (N ~1e4..1e6): cost per particle-step");
+  bench->add_option("--sweep-dp", bench_sweep_dp, "sweep dp list d1,d2,... [m]");
+  bench->add_option("--sweep-steps", bench_opt.sweep_steps, "timed steps per sweep point")
+      ->check(CLI::PositiveNumber);
+  bench->add_option("-o,--out", bench_opt.out_dir, "output folder (default out/bench)");
+  bench->add_option("--bench-dir", bench_opt.bench_dir, "folder holding cases/b2d.yaml");
+  auto* single = bench->add_option("--single", bench_single.case_file,
+                                   "one measurement of this case file (used by the driver)");
+  bench->add_option("--dp", bench_single.dp, "with --single: dp [m]")->needs(single);
+  bench->add_option("--end", bench_single.end, "with --single: end time [s]")->needs(single);
+  bench->add_option("--steps", bench_single.steps, "with --single: timed steps")->needs(single);
+  bench->add_option("--warmup", bench_single.warmup, "with --single: untimed steps first")
+      ->needs(single);
+  bench->add_option("-t", bench_single.threads, "with --single: threads")->needs(single);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -180,6 +207,20 @@ int main(int argc, char** argv) {
       if (!val_res.empty()) val.resolutions = swell::parse_number_list(val_res, "--resolution");
       if (!val_cells.empty()) val.cell_sizes = swell::parse_number_list(val_cells, "--cell-size");
       swell::run_validate(val, std::cerr);
+    } else if (*bench) {
+      if (!bench_single.case_file.empty()) return swell::run_bench_single(bench_single, std::cout);
+      if (!bench_threads.empty()) {
+        bench_opt.threads.clear();
+        for (const double t : swell::parse_number_list(bench_threads, "--threads")) {
+          if (!(t >= 1.0) || t != std::floor(t))
+            throw std::invalid_argument("--threads: expected positive integers, got " +
+                                        bench_threads);
+          bench_opt.threads.push_back(static_cast<int>(t));
+        }
+      }
+      if (!bench_sweep_dp.empty())
+        bench_opt.sweep_dp = swell::parse_number_list(bench_sweep_dp, "--sweep-dp");
+      return swell::run_bench(bench_opt, std::cout);
     } else if (*foam) {
       const swell::CaseSpec spec = swell::load_case_file(foam_case);
       swell::run_foam_command(spec, foam_opt, std::cout);

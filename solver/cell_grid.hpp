@@ -69,24 +69,31 @@ class CellGrid {
   // Reorders the active particles by cell and excludes the ones that left the domain or hold
   // non-finite values. Allocation-free once the buffers reached their size.
   SortResult sort(ParticleSet<D>& ps) {
-    SortResult result;
     const std::size_t n = ps.size();
+    const long ln = static_cast<long>(n);
     const auto excluded_cell = static_cast<std::uint32_t>(num_cells_);
     cell_of_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
+    std::size_t non_finite = 0, out_of_domain = 0;
+#pragma omp parallel for schedule(static) reduction(+ : non_finite, out_of_domain) \
+    if (ln > ParticleSet<D>::kParallelMin)
+    for (long i = 0; i < ln; ++i) {
       const bool finite =
           ps.pos[i].allFinite() && ps.vel[i].allFinite() && std::isfinite(ps.rho[i]);
       if (!finite) {
         cell_of_[i] = excluded_cell;
-        ++result.non_finite;
+        ++non_finite;
       } else if (!inside_domain(ps.pos[i])) {
         cell_of_[i] = excluded_cell;
-        ++result.out_of_domain;
+        ++out_of_domain;
       } else {
         cell_of_[i] = cell_index(ps.pos[i]);
       }
     }
-    // Counting sort: start_[c] becomes the first index of cell c.
+    SortResult result;
+    result.non_finite = non_finite;
+    result.out_of_domain = out_of_domain;
+    // Counting sort: start_[c] becomes the first index of cell c. The histogram and the
+    // scatter are serial (a few ns per particle); the gathers below are parallel.
     std::fill(start_.begin(), start_.end(), 0u);
     for (std::size_t i = 0; i < n; ++i) ++start_[cell_of_[i] + 1];
     for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
@@ -95,15 +102,22 @@ class CellGrid {
     for (std::size_t i = 0; i < n; ++i)
       order_[cursor_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
     ps.permute(order_);
-    // Cell ids in the new order (same counting-sort pass, so no second cell computation).
-    for (std::size_t c = 0; c <= num_cells_; ++c)
-      for (std::uint32_t i = start_[c]; i < start_[c + 1]; ++i)
-        cell_of_[i] = static_cast<std::uint32_t>(c);
     ps.n_active = start_[num_cells_];
-    // Cells holding fluid: wall cells with no fluid around them can skip the pair loop.
-    has_fluid_.assign(num_cells_, 0);
-    for (std::size_t i = 0; i < ps.n_active; ++i)
-      if (ps.kind[i] == Kind::Fluid) has_fluid_[cell_of_[i]] = 1;
+    // Cell ids in the new order (from the counting sort, no second cell computation) and the
+    // cells holding fluid: wall cells with no fluid around them can skip the pair loop.
+    has_fluid_.resize(num_cells_);
+    const long ncells = static_cast<long>(num_cells_);
+#pragma omp parallel for schedule(static) if (ln > ParticleSet<D>::kParallelMin)
+    for (long c = 0; c < ncells; ++c) {
+      std::uint8_t any = 0;
+      for (std::uint32_t i = start_[c]; i < start_[c + 1]; ++i) {
+        cell_of_[i] = static_cast<std::uint32_t>(c);
+        any |= ps.kind[i] == Kind::Fluid;
+      }
+      has_fluid_[c] = any;
+    }
+    for (std::uint32_t i = start_[num_cells_]; i < start_[num_cells_ + 1]; ++i)
+      cell_of_[i] = excluded_cell;
     return result;
   }
 

@@ -46,6 +46,11 @@ struct WendlandC2 {
     const double t = 1.0 - 0.5 * q;
     return -5.0 * a * t * t * t * inv_h * inv_h;
   }
+  // f(r) for 0 < r < support(), without branches (the pair loop's SIMD form).
+  double fs(double r) const {
+    const double t = 1.0 - 0.5 * r * inv_h;
+    return -5.0 * a * t * t * t * inv_h * inv_h;
+  }
 };
 
 // Cubic B-spline (Monaghan & Lattanzio 1985), support 2h.
@@ -79,6 +84,11 @@ struct CubicSpline {
     if (q < 1.0) return a * (-3.0 + 2.25 * q) * inv_h * inv_h;
     const double t = 2.0 - q;
     return -0.75 * a * t * t * inv_h * inv_h / q;
+  }
+  double fs(double r) const {
+    const double q = r * inv_h, t = 2.0 - q;
+    const double inner = -3.0 + 2.25 * q, outer = -0.75 * t * t / q;
+    return a * (q < 1.0 ? inner : outer) * inv_h * inv_h;
   }
 };
 
@@ -117,6 +127,11 @@ struct QuinticSpline {
     const double dwdq = -5.0 * (p4(3.0 - q) - 6.0 * p4(2.0 - q) + 15.0 * p4(1.0 - q));
     return a * dwdq * inv_h * inv_h / q;
   }
+  double fs(double r) const {  // r > 0 (the pair loop drops coincident pairs)
+    const double q = r * inv_h;
+    const double dwdq = -5.0 * (p4(3.0 - q) - 6.0 * p4(2.0 - q) + 15.0 * p4(1.0 - q));
+    return a * dwdq * inv_h * inv_h / q;
+  }
 };
 
 // Gaussian kernel truncated at 3h and renormalised so the truncated kernel integrates to 1.
@@ -147,6 +162,10 @@ struct Gaussian {
   double f(double r) const {
     const double q = r * inv_h;
     if (q >= 3.0) return 0.0;
+    return -2.0 * a * std::exp(-q * q) * inv_h * inv_h;
+  }
+  double fs(double r) const {
+    const double q = r * inv_h;
     return -2.0 * a * std::exp(-q * q) * inv_h * inv_h;
   }
 };

@@ -69,30 +69,61 @@ struct ParticleSet {
     fn(id);
   }
 
-  // new[i] = old[order[i]] for every array. Scratch buffers are reused between calls.
+  // new[i] = old[order[i]] for every array. Scratch buffers are reused between calls. Two
+  // parallel regions (gathers without barriers between them); serial for small sets. Two
+  // vector scratch arrays serve the four vector arrays: pos0 and vel0 are gathered in the
+  // second pass into the storage pos and vel left behind.
   void permute(const std::vector<std::uint32_t>& order) {
-    const std::size_t n = order.size();
-    auto apply = [&](auto& a, auto& scratch) {
-      scratch.resize(a.size());
-      for (std::size_t i = 0; i < n; ++i) scratch[i] = a[order[i]];
-      for (std::size_t i = n; i < a.size(); ++i) scratch[i] = a[i];
+    const long n = static_cast<long>(order.size());
+    const std::size_t total = pos.size();
+    auto gather = [&](auto& a, auto& scratch) {
+#pragma omp for schedule(static) nowait
+      for (long i = 0; i < n; ++i) scratch[i] = a[order[i]];
+    };
+    auto finish = [&](auto& a, auto& scratch) {
+      for (std::size_t i = order.size(); i < total; ++i) scratch[i] = a[i];
       a.swap(scratch);
     };
-    apply(pos, scratch_v_);
-    apply(vel, scratch_v_);
-    apply(pos0, scratch_v_);
-    apply(vel0, scratch_v_);
-    apply(rho, scratch_d_);
-    apply(rho0, scratch_d_);
-    apply(mass, scratch_d_);
-    apply(kind, scratch_k_);
-    apply(body, scratch_b_);
-    apply(id, scratch_i_);
+    for (auto* s : {&scratch_v_[0], &scratch_v_[1]}) s->resize(total);
+    for (auto* s : {&scratch_d_[0], &scratch_d_[1], &scratch_d_[2]}) s->resize(total);
+    scratch_k_.resize(total);
+    scratch_b_.resize(total);
+    scratch_i_.resize(total);
+#pragma omp parallel if (n > kParallelMin)
+    {
+      gather(pos, scratch_v_[0]);
+      gather(vel, scratch_v_[1]);
+      gather(rho, scratch_d_[0]);
+      gather(rho0, scratch_d_[1]);
+      gather(mass, scratch_d_[2]);
+      gather(kind, scratch_k_);
+      gather(body, scratch_b_);
+      gather(id, scratch_i_);
+    }
+    finish(pos, scratch_v_[0]);
+    finish(vel, scratch_v_[1]);
+    finish(rho, scratch_d_[0]);
+    finish(rho0, scratch_d_[1]);
+    finish(mass, scratch_d_[2]);
+    finish(kind, scratch_k_);
+    finish(body, scratch_b_);
+    finish(id, scratch_i_);
+#pragma omp parallel if (n > kParallelMin)
+    {
+      gather(pos0, scratch_v_[0]);
+      gather(vel0, scratch_v_[1]);
+    }
+    finish(pos0, scratch_v_[0]);
+    finish(vel0, scratch_v_[1]);
   }
 
+  // Below this many particles the O(N) loops of the sort run serially: their parallel
+  // region would cost more than the loop.
+  static constexpr long kParallelMin = 8192;
+
  private:
-  std::vector<V> scratch_v_;
-  std::vector<double> scratch_d_;
+  std::vector<V> scratch_v_[2];
+  std::vector<double> scratch_d_[3];
   std::vector<Kind> scratch_k_;
   std::vector<std::uint16_t> scratch_b_;
   std::vector<std::uint32_t> scratch_i_;
