@@ -74,11 +74,14 @@ fs::path find_bench_dir(const std::string& given) {
   fs::path p = self_exe().parent_path();
   for (int up = 0; up < 4 && !p.empty(); ++up, p = p.parent_path()) bases.push_back(p);
   bases.push_back(fs::current_path());
+#ifdef SWELL_SOURCE_DIR
+  bases.push_back(SWELL_SOURCE_DIR);  // the source tree this executable was built from
+#endif
   for (const auto& b : bases)
     if (fs::exists(b / "bench" / "cases" / "b2d.yaml")) return b / "bench";
   throw std::invalid_argument(
-      "bench: cannot find bench/cases/b2d.yaml next to the executable or in the working "
-      "directory; pass --bench-dir");
+      "bench: cannot find bench/cases/b2d.yaml next to the executable, in the working "
+      "directory or in the source tree; pass --bench-dir");
 }
 
 struct Measurement {
@@ -181,11 +184,14 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
   log << "bench: " << cpu_model() << ", " << omp_get_num_procs() << " logical CPUs, " << date
       << "; " << opt.repeats << " run(s) per point, medians\n";
 
-  std::ofstream runs_csv(out / "bench_runs.csv");
+  std::ofstream runs_csv, sum_csv;
+  if (!cases.empty()) {
+    runs_csv.open(out / "bench_runs.csv");
+    sum_csv.open(out / "bench_summary.csv");
+  }
   runs_csv << "# every run of swell bench; pss = particles x steps / wall [1/s], times [s], RSS [kB]\n"
            << "case,dp,threads,repeat,particles,steps,wall,pss,neighbour,interaction,integration,"
               "other,rss_base_kb,rss_peak_kb\n";
-  std::ofstream sum_csv(out / "bench_summary.csv");
   sum_csv << "# medians over repeats; dsph_pss: DualSPHysics 5.4 CPU, same case (issue #5)\n"
           << "case,dp,threads,particles,steps,wall,pss,dsph_pss,ratio,neighbour,interaction,"
              "integration,other,rss_peak_mb,bytes_per_particle\n";
