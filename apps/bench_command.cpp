@@ -271,15 +271,15 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
 
   if (opt.sweep) {
     std::vector<double> dps = opt.sweep_dp;
-    if (dps.empty()) dps = {0.025, 0.02, 0.015, 0.01, 0.0075, 0.006, 0.005};
+    if (dps.empty()) dps = {0.025, 0.02, 0.015, 0.01, 0.0075, 0.006, 0.005, 0.0045};
     const int t = *std::max_element(opt.threads.begin(), opt.threads.end());
     const fs::path sweep_csv = out / "scaling.csv";
     std::ofstream sw(sweep_csv);
     sw << "# swell bench --sweep: B3D (bench/cases/b3d.yaml) over dp, " << t << " thread(s), "
        << opt.sweep_steps << " timed steps after " << opt.sweep_warmup << " warm-up steps, median of "
        << opt.repeats << " run(s); " << cpu_model() << ", " << date << "\n"
-       << "dp,particles,steps,wall,pss,ns_per_particle_step,neighbour,interaction,integration,"
-          "rss_peak_mb,bytes_per_particle\n";
+       << "dp,particles,fluid,steps,wall,pss,ns_per_particle_step,ns_per_fluid_particle_step,"
+          "neighbour,interaction,integration,rss_peak_mb,bytes_per_particle\n";
     const std::string file = (dir / "cases" / "b3d.yaml").string();
     for (const double dp : dps) {
       std::vector<Measurement> ms;
@@ -294,8 +294,10 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
                 [](const auto& a, const auto& b) { return a.get("pss") < b.get("pss"); });
       const Measurement& m = ms[ms.size() / 2];
       const double n = m.get("particles");
-      sw << dp << "," << n << "," << m.get("steps") << "," << m.get("wall") << "," << m.get("pss")
-         << "," << 1e9 / m.get("pss") << "," << m.get("neighbour") << "," << m.get("interaction")
+      sw << dp << "," << n << "," << m.get("fluid") << "," << m.get("steps") << ","
+         << m.get("wall") << "," << m.get("pss") << "," << 1e9 / m.get("pss") << ","
+         << 1e9 * m.get("wall") / (m.get("fluid") * m.get("steps")) << ","
+         << m.get("neighbour") << "," << m.get("interaction")
          << "," << m.get("integration") << "," << m.get("rss_peak_kb") / 1024.0 << ","
          << (m.get("rss_peak_kb") - m.get("rss_base_kb")) * 1024.0 / n << "\n";
       sw.flush();

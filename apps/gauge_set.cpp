@@ -12,22 +12,6 @@
 namespace swell {
 namespace {
 
-const char* kind_name(GaugeSpec::Kind k) {
-  switch (k) {
-    case GaugeSpec::Kind::Pressure:
-      return "pressure";
-    case GaugeSpec::Kind::Height:
-      return "height";
-    case GaugeSpec::Kind::Velocity:
-      return "velocity";
-    case GaugeSpec::Kind::Force:
-      return "force";
-    case GaugeSpec::Kind::Front:
-      return "front";
-  }
-  return "unknown";
-}
-
 const char* kind_comment(GaugeSpec::Kind k) {
   switch (k) {
     case GaugeSpec::Kind::Pressure:
@@ -145,7 +129,7 @@ GaugeSet<D>::GaugeSet(const std::vector<GaugeSpec>& gauges, double default_every
       for (auto& c : gauge_columns(gauges[i], D)) columns.push_back(c);
     }
     const std::string path =
-        (std::filesystem::path(out_dir) / (std::string("gauges_") + kind_name(kind) + ".csv"))
+        (std::filesystem::path(out_dir) / (std::string("gauges_") + gauge_kind_name(kind) + ".csv"))
             .string();
     files_.push_back(std::make_unique<GaugeCsvFile>(
         path, std::vector<std::string>{"swell gauges, case " + case_name, kind_comment(kind)},

@@ -29,9 +29,11 @@ def main(src, png):
     rows.sort(key=lambda r: r["particles"])
     n = [r["particles"] for r in rows]
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    ax.plot(n, [r["ns_per_particle_step"] for r in rows], "o-", label="total")
+    ax.plot(n, [r["ns_per_particle_step"] for r in rows], "o-", label="total, per particle")
+    ax.plot(n, [r["ns_per_fluid_particle_step"] for r in rows], "^-",
+            label="total, per fluid particle")
     for phase in ("interaction", "neighbour", "integration"):
-        ns = [1e9 * r[phase] / (r["particles"] * r["steps"]) for r in rows]
+        ns = [1e9 * r[phase] / (r["particles"] * r["steps"]) for r in rows]  # per particle
         ax.plot(n, ns, "s--", ms=4, label=phase)
     ax.set_xscale("log")
     ax.set_ylim(bottom=0)

@@ -52,6 +52,23 @@ struct GaugeSpec {
   int line = 0;
 };
 
+// The gauge kind as written in case files and in gauge file names (gauges_<kind>.csv).
+inline const char* gauge_kind_name(GaugeSpec::Kind k) {
+  switch (k) {
+    case GaugeSpec::Kind::Pressure:
+      return "pressure";
+    case GaugeSpec::Kind::Height:
+      return "height";
+    case GaugeSpec::Kind::Velocity:
+      return "velocity";
+    case GaugeSpec::Kind::Force:
+      return "force";
+    case GaugeSpec::Kind::Front:
+      return "front";
+  }
+  return "gauge";
+}
+
 struct CaseSpec {
   std::string file;  // path of the case file, for messages
   std::string text;  // the case file as read, kept for metadata

@@ -47,22 +47,6 @@ std::string foam_word(const std::string& s) {
 
 namespace {
 
-const char* kind_word(GaugeSpec::Kind k) {
-  switch (k) {
-    case GaugeSpec::Kind::Pressure:
-      return "pressure";
-    case GaugeSpec::Kind::Height:
-      return "height";
-    case GaugeSpec::Kind::Velocity:
-      return "velocity";
-    case GaugeSpec::Kind::Force:
-      return "force";
-    case GaugeSpec::Kind::Front:
-      return "front";
-  }
-  return "gauge";
-}
-
 bool inside_grid(const Grid& g, const Eigen::Vector3d& x) {
   for (int d = 0; d < g.dim; ++d)
     if (x[d] < g.min[d] || x[d] > g.max[d]) return false;
@@ -361,7 +345,7 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
           if (k.first == key.first) ++n;
         groups[key] = n;
       }
-      pr.function = std::string(kind_word(gs.kind)) + "_" + std::to_string(groups[key]);
+      pr.function = std::string(gauge_kind_name(gs.kind)) + "_" + std::to_string(groups[key]);
     }
     p.probes.push_back(pr);
   }

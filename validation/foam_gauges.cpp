@@ -103,22 +103,6 @@ std::vector<std::array<double, 4>> read_set(const fs::path& file) {
   return pts;
 }
 
-const char* kind_file(GaugeSpec::Kind k) {
-  switch (k) {
-    case GaugeSpec::Kind::Pressure:
-      return "pressure";
-    case GaugeSpec::Kind::Height:
-      return "height";
-    case GaugeSpec::Kind::Velocity:
-      return "velocity";
-    case GaugeSpec::Kind::Force:
-      return "force";
-    case GaugeSpec::Kind::Front:
-      return "front";
-  }
-  return "gauge";
-}
-
 const char* kind_comment(GaugeSpec::Kind k) {
   switch (k) {
     case GaugeSpec::Kind::Pressure:
@@ -322,7 +306,7 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
       if (pr.skipped && pr.spec.kind == kind)
         comment.push_back("gauge " + pr.spec.name + " not sampled (see the swell foam notes)");
     const std::string path =
-        (fs::path(gauge_dir) / (std::string("gauges_") + kind_file(kind) + ".csv")).string();
+        (fs::path(gauge_dir) / (std::string("gauges_") + gauge_kind_name(kind) + ".csv")).string();
     GaugeCsvFile csv(path, comment, columns);
     std::vector<double> values(columns.size());
     std::vector<bool> present(columns.size());

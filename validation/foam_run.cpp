@@ -295,7 +295,8 @@ FoamResult run_foam_case(const CaseSpec& spec, const FoamOptions& opt, std::ostr
   // for hours; stop it.
   const fs::path lp = dir / "log.interFoam";
   log << "  interFoam (" << (opt.np > 1 ? std::to_string(opt.np) + " processes" : "serial")
-      << ", to t = " << plan.end_time << " s) ..." << std::flush;
+      << ", to t = " << std::defaultfloat << std::setprecision(6) << plan.end_time << " s) ..."
+      << std::flush;
   const auto t0 = std::chrono::steady_clock::now();
   auto last_check = t0;
   const StepResult s = run_step(dir, solver, lp, [&]() -> std::string {
