@@ -32,33 +32,6 @@ const char* kind_comment(GaugeSpec::Kind k) {
 
 }  // namespace
 
-std::vector<std::string> gauge_columns(const GaugeSpec& g, int dim) {
-  static const char* axes[] = {"x", "y", "z"};
-  std::vector<std::string> c;
-  switch (g.kind) {
-    case GaugeSpec::Kind::Pressure:
-      c.push_back(g.name + " [Pa]");
-      break;
-    case GaugeSpec::Kind::Height:
-    case GaugeSpec::Kind::Front:
-      c.push_back(g.name + " [m]");
-      break;
-    case GaugeSpec::Kind::Velocity:
-      for (int d = 0; d < dim; ++d) c.push_back(g.name + "_v" + axes[d] + " [m/s]");
-      break;
-    case GaugeSpec::Kind::Force: {
-      const std::string fu = dim == 2 ? " [N/m]" : " [N]", mu = dim == 2 ? " [N m/m]" : " [N m]";
-      for (int d = 0; d < dim; ++d) c.push_back(g.name + "_f" + axes[d] + fu);
-      if (dim == 2) {
-        c.push_back(g.name + "_mz" + mu);
-      } else {
-        for (int d = 0; d < 3; ++d) c.push_back(g.name + "_m" + axes[d] + mu);
-      }
-      break;
-    }
-  }
-  return c;
-}
 
 template <int D>
 std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,

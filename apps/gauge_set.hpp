@@ -24,9 +24,6 @@ struct GaugeContext {
   std::map<std::string, int> body_ids;
 };
 
-// Column names (with SI units) of one gauge, for a D-dimensional case.
-std::vector<std::string> gauge_columns(const GaugeSpec& g, int dim);
-
 // Values of one gauge, in the order of gauge_columns(). `ace` may be empty where no force
 // gauge is evaluated (post-processing).
 template <int D>

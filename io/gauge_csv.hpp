@@ -7,7 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "io/case_spec.hpp"
+
 namespace swell {
+
+// The CSV columns of a gauge (name and SI unit per quantity), the same for SPH runs, `swell
+// probe` and converted OpenFOAM runs, so `swell compare` reads them alike.
+std::vector<std::string> gauge_columns(const GaugeSpec& g, int dim);
 
 class GaugeCsvFile {
  public:

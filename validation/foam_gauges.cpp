@@ -159,34 +159,6 @@ double foam::front_from_row(const std::vector<double>& alpha, double x0, double 
   return front;
 }
 
-std::vector<std::string> foam::gauge_columns(const GaugeSpec& g, int dim) {
-  static const char* axes[] = {"x", "y", "z"};
-  std::vector<std::string> c;
-  switch (g.kind) {
-    case GaugeSpec::Kind::Pressure:
-      c.push_back(g.name + " [Pa]");
-      break;
-    case GaugeSpec::Kind::Height:
-    case GaugeSpec::Kind::Front:
-      c.push_back(g.name + " [m]");
-      break;
-    case GaugeSpec::Kind::Velocity:
-      for (int d = 0; d < dim; ++d) c.push_back(g.name + "_v" + axes[d] + " [m/s]");
-      break;
-    case GaugeSpec::Kind::Force: {
-      const std::string fu = dim == 2 ? " [N/m]" : " [N]", mu = dim == 2 ? " [N m/m]" : " [N m]";
-      for (int d = 0; d < dim; ++d) c.push_back(g.name + "_f" + axes[d] + fu);
-      if (dim == 2) {
-        c.push_back(g.name + "_mz" + mu);
-      } else {
-        for (int d = 0; d < 3; ++d) c.push_back(g.name + "_m" + axes[d] + mu);
-      }
-      break;
-    }
-  }
-  return c;
-}
-
 std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOptions& opt,
                                              const std::string& gauge_dir, std::ostream& log) {
   const Plan plan = foam::make_plan(spec, opt);
@@ -296,7 +268,7 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
     std::vector<std::size_t> first;
     for (const Probe* pr : members) {
       first.push_back(columns.size());
-      for (auto& c : foam::gauge_columns(pr->spec, dim)) columns.push_back(c);
+      for (auto& c : gauge_columns(pr->spec, dim)) columns.push_back(c);
     }
     std::ostringstream first_line;
     first_line << "swell foam gauges (interFoam), case " << spec.name << ", cell " << plan.cell_size

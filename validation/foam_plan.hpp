@@ -96,9 +96,6 @@ std::string foam_word(const std::string& s);
 // plus the water fraction of the next cell. NaN if no cell is wet.
 double front_from_row(const std::vector<double>& alpha, double x0, double dx);
 
-// The CSV columns of a gauge, as an SPH run names them (apps/gauge_set.cpp gauge_columns).
-std::vector<std::string> gauge_columns(const GaugeSpec& g, int dim);
-
 // What an interFoam log says about the run: steps, last time and step, and the problem if any
 // (empty when it finished cleanly). `status` is the exit status, `stopped` the reason the run
 // was stopped by the watcher (empty if not).
