@@ -17,7 +17,7 @@ namespace {
 template <int D>
 bench::RunResult single_dim(const CaseSpec& spec, const BenchSingleOptions& opt) {
   CaseSetup<D> setup = setup_case<D>(spec);
-  Simulation<D> sim(setup.params, std::move(setup.particles));
+  Simulation<D> sim = make_simulation<D>(setup, std::move(setup.particles));
   if (opt.steps > 0) {
     for (long s = 0; s < opt.warmup; ++s) sim.step();
     return bench::time_run(sim, 0.0, opt.steps);

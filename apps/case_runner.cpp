@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "bc/dbc.hpp"
+#include "bc/moving_bodies.hpp"
 #include "geometry/lattice_fill.hpp"
 #include "geometry/shape_factory.hpp"
 #include "io/case_file.hpp"
@@ -105,6 +106,19 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   p.rho_min_factor = spec.rho_min_factor;
   p.rho_max_factor = spec.rho_max_factor;
 
+  // Motion laws (checked here: a bad CSV series or spec is a case error at the body's line).
+  s.motions.resize(spec.bodies.size());
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    const BodySpec& body = spec.bodies[b];
+    if (body.motion.type == MotionSpec::Type::None) continue;
+    try {
+      s.motions[b] = MotionLaw(body.motion);
+    } catch (const std::invalid_argument& e) {
+      throw CaseError(spec.file, body.line,
+                      "bodies[" + std::to_string(b) + "].motion: " + std::string(e.what()));
+    }
+  }
+
   const double mass = spec.rho0 * std::pow(spec.dp, D);
   std::size_t total = 0;
   for (const auto& fb : filled) total += fb.points.size();
@@ -116,8 +130,11 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     s.fill.push_back(fb.report);
     for (const auto& x : fb.points)
       s.particles.add(x.template head<D>(), Vec<D>::Zero(), spec.rho0, mass,
-                      fluid ? Kind::Fluid : Kind::Boundary, static_cast<std::uint16_t>(b));
+                      fluid ? Role::Fluid : Role::FixedWall, static_cast<std::uint16_t>(b));
   }
+
+  // Moving bodies' particles become moving walls, placed at their pose at t = 0.
+  MovingBodies<D>::prepare(s.particles, s.motions);
 
   // Still-water height and c0 = coefsound sqrt(g H) (DualSPHysics' convention).
   const Vec<D> g = p.gravity.template head<D>();
@@ -125,7 +142,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   const Vec<D> up = gnorm > 0.0 ? Vec<D>(-g / gnorm) : Vec<D>::UnitY();
   double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
-    if (s.particles.kind[i] != Kind::Fluid) continue;
+    if (s.particles.role[i] != Role::Fluid) continue;
     const double z = s.particles.pos[i].dot(up);
     zmin = std::min(zmin, z);
     zmax = std::max(zmax, z);
@@ -143,6 +160,23 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     lo = lo.cwiseMin(s.particles.pos[i]);
     hi = hi.cwiseMax(s.particles.pos[i]);
   }
+  // A moving body must never be excluded: the box holds its whole path up to time.end.
+  for (std::size_t b = 0; b < s.motions.size(); ++b) {
+    if (!s.motions[b].moves()) continue;
+    Eigen::Vector3d blo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d bhi = -blo;
+    for (std::size_t i = 0; i < s.particles.size(); ++i) {
+      if (s.particles.body[i] != b) continue;
+      blo.template head<D>() = blo.template head<D>().cwiseMin(s.particles.pos_ref[i]);
+      bhi.template head<D>() = bhi.template head<D>().cwiseMax(s.particles.pos_ref[i]);
+    }
+    if (D == 2) blo.z() = bhi.z() = 0.0;
+    const auto corners = box_corners(blo, bhi);
+    Eigen::Vector3d slo, shi;
+    sweep_bounds(s.motions[b], spec.t_end, corners, slo, shi);
+    lo = lo.cwiseMin(Vec<D>(slo.template head<D>()));
+    hi = hi.cwiseMax(Vec<D>(shi.template head<D>()));
+  }
   const Vec<D> margin = (0.1 * (hi - lo)).array() + 2.0 * p.h;
   p.domain_min.setZero();
   p.domain_max.setZero();
@@ -155,6 +189,16 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   return s;
 }
 
+template <int D>
+Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particles) {
+  typename Simulation<D>::Hooks hooks;
+  if (MovingBodies<D>::any_moves(setup.motions))
+    hooks.push_back(std::make_unique<MovingBodies<D>>(setup.motions));
+  return Simulation<D>(setup.params, std::move(particles), make_dbc<D>(), std::move(hooks));
+}
+
+template Simulation<2> make_simulation<2>(const CaseSetup<2>&, ParticleSet<2>);
+template Simulation<3> make_simulation<3>(const CaseSetup<3>&, ParticleSet<3>);
 template CaseSetup<2> setup_case<2>(const CaseSpec&);
 template CaseSetup<3> setup_case<3>(const CaseSpec&);
 

@@ -11,8 +11,10 @@
 #include "geometry/lattice_fill.hpp"
 #include "geometry/mesh_solid.hpp"
 #include "io/case_spec.hpp"
-#include "solver/particle_set.hpp"
-#include "solver/simulation.hpp"
+#include "solver/state/particle_set.hpp"
+#include "solver/time/simulation.hpp"
+#include "bc/dbc.hpp"
+#include "bc/motion.hpp"
 #include "solver/solver_params.hpp"
 
 namespace swell {
@@ -33,6 +35,7 @@ struct CaseSetup {
   // What the fill did, for the run summary and `swell fill`: per body (case order) counts and
   // the lattice volume check, every mesh loaded (faces, orientation, repairs), and the time
   // spent building shapes and filling the lattice.
+  std::vector<MotionLaw> motions;  // per body (index = body id); none for fluid and fixed walls
   std::vector<geometry::BodyFillReport> fill;
   std::vector<geometry::MeshReport> meshes;
   double fill_seconds = 0.0;
@@ -43,6 +46,11 @@ struct CaseSetup {
 // shape that cannot be built or a body that cannot be filled.
 template <int D>
 CaseSetup<D> setup_case(const CaseSpec& spec);
+
+// The simulation of a set-up case: DBC walls and, if a body moves, the motion hook. `particles`
+// are the setup's (fresh start) or a checkpoint's (restart).
+template <int D>
+Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particles);
 
 struct RunOptions {
   std::string out_dir;          // default: out/<case name>

@@ -11,7 +11,7 @@
 
 #include "apps/case_runner.hpp"
 #include "io/vtk_writer.hpp"
-#include "solver/physics_terms.hpp"
+#include "solver/physics/eos.hpp"
 
 namespace swell {
 namespace {

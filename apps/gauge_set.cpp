@@ -7,7 +7,7 @@
 
 #include "solver/diagnostics.hpp"
 #include "solver/gauges.hpp"
-#include "solver/kernels.hpp"
+#include "solver/physics/kernels.hpp"
 
 namespace swell {
 namespace {

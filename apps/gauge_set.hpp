@@ -10,7 +10,7 @@
 
 #include "io/case_spec.hpp"
 #include "io/gauge_csv.hpp"
-#include "solver/particle_set.hpp"
+#include "solver/state/particle_set.hpp"
 #include "solver/solver_params.hpp"
 
 namespace swell {

@@ -120,15 +120,16 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
                                   " particles but " + spec.file + " makes " +
                                   std::to_string(n_total) +
                                   ": restart needs the case the run was started with");
-    sim.emplace(setup.params, std::move(c.particles));
+    sim.emplace(make_simulation<D>(setup, std::move(c.particles)));
     sim->restore(c.clock);
+    sim->restore_hooks(c.schedule);
     schedule = c.schedule;
     resume_after = c.clock.time;
     sum.restarted_from = c.clock.time;
     log << "  restart from " << ck << " at t = " << c.clock.time << " s, step " << c.clock.steps
         << "\n";
   } else {
-    sim.emplace(setup.params, std::move(setup.particles));
+    sim.emplace(make_simulation<D>(setup, std::move(setup.particles)));
   }
 
   const double t_end = spec.t_end;
@@ -216,6 +217,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     s["next_checkpoint"] = ck_timer.next;
     s["snapshot"] = snapshot;
     gauges.save_schedule(s);
+    sim->save_hooks(s);
     diag.flush();
     gauges.flush();
     write_checkpoint<D>(ck_path, sim->particles(), sim->clock(), s);

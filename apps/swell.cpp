@@ -15,7 +15,7 @@
 #include "apps/probe_command.hpp"
 #include "apps/validate_command.hpp"
 #include "io/case_file.hpp"
-#include "solver/simulation.hpp"
+#include "solver/time/simulation.hpp"
 #include "validation/validation_manifest.hpp"
 
 namespace {

@@ -1,19 +1,53 @@
-// Dynamic boundary conditions (Crespo et al. 2007): wall particles carry density and pressure
-// from the continuity equation and EoS like fluid, but keep prescribed positions. The time
-// loop applies the density floor (solver/simulation.cpp); this file sets initial densities.
+// Dynamic boundary conditions (Crespo et al. 2007) as a boundary module: wall particles carry
+// density and pressure from the continuity equation and EoS like fluid, but take their
+// positions from their role (fixed, or prescribed by bc/motion). The module owns
+//   - the wall selection of the pair loop (WallsSeeFluid: walls see fluid only, continuity
+//     only, dry cells skipped),
+//   - the density floor: a wall particle's density never drops below rho0, so walls never pull
+//     fluid in (the finish_density stage),
+//   - the hydrostatic initial densities of fluid and wetted walls (initialise_hydrostatic).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <memory>
 #include <vector>
 
-#include "solver/cell_grid.hpp"
-#include "solver/particle_set.hpp"
-#include "solver/physics_terms.hpp"
+#include "solver/neighbours/cell_grid.hpp"
+#include "solver/neighbours/gather.hpp"
+#include "solver/physics/eos.hpp"
 #include "solver/solver_params.hpp"
+#include "solver/state/particle_set.hpp"
+#include "solver/time/step_hooks.hpp"
 
 namespace swell {
+
+template <int D>
+class DbcBoundary final : public BoundaryModel<D> {
+ public:
+  using Selection = WallsSeeFluid;
+  std::string name() const override { return "dbc"; }
+  // The pair loop with DBC's wall selection (defined in bc/dbc.cpp, where the loop is compiled).
+  void forces(StepState<D>& s) override;
+  void finish_density(StepState<D>& s) override {
+    ParticleSet<D>& ps = s.particles;
+    const double rho0 = s.params.rho0;
+    const long n = static_cast<long>(ps.size());
+#pragma omp parallel for schedule(static) if (n > ParticleSet <D>::kParallelMin)
+    for (long i = 0; i < n; ++i)
+      if (is_wall(ps.role[i]) && ps.rho[i] < rho0) ps.rho[i] = rho0;
+  }
+};
+
+template <int D>
+std::unique_ptr<BoundaryModel<D>> make_dbc() {
+  return std::make_unique<DbcBoundary<D>>();
+}
+
+extern template class DbcBoundary<2>;
+extern template class DbcBoundary<3>;
 
 // Free-surface level of each fluid body along "up" (-g): the top particle plus dp/2.
 template <int D>
@@ -21,7 +55,7 @@ std::map<std::uint16_t, double> fluid_levels(const ParticleSet<D>& ps, const Vec
                                              double dp) {
   std::map<std::uint16_t, double> level;
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps.kind[i] != Kind::Fluid) continue;
+    if (ps.role[i] != Role::Fluid) continue;
     const double z = ps.pos[i].dot(up) + 0.5 * dp;
     auto [it, fresh] = level.emplace(ps.body[i], z);
     if (!fresh) it->second = std::max(it->second, z);
@@ -53,11 +87,11 @@ void initialise_hydrostatic(ParticleSet<D>& ps, const SolverParams& prm) {
     grid.sort(ps);
     for (std::size_t i = 0; i < ps.size(); ++i) {
       double top = -std::numeric_limits<double>::infinity();
-      if (ps.kind[i] == Kind::Fluid) {
+      if (ps.role[i] == Role::Fluid) {
         top = level.at(ps.body[i]);
       } else {
         grid.for_each_candidate(i, [&](std::uint32_t j) {
-          if (ps.kind[j] == Kind::Fluid && (ps.pos[j] - ps.pos[i]).norm() < support)
+          if (ps.role[j] == Role::Fluid && (ps.pos[j] - ps.pos[i]).norm() < support)
             top = std::max(top, level.at(ps.body[j]));
         });
       }
@@ -66,9 +100,9 @@ void initialise_hydrostatic(ParticleSet<D>& ps, const SolverParams& prm) {
     }
   }
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    ps.rho0[i] = ps.rho[i];
-    ps.pos0[i] = ps.pos[i];
-    ps.vel0[i] = ps.vel[i];
+    ps.rho_prev[i] = ps.rho[i];
+    ps.pos_prev[i] = ps.pos[i];
+    ps.vel_prev[i] = ps.vel[i];
   }
 }
 

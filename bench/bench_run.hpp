@@ -10,7 +10,7 @@
 #include <cstring>
 #include <string>
 
-#include "solver/simulation.hpp"
+#include "solver/time/simulation.hpp"
 
 namespace swell::bench {
 

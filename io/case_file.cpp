@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/case_motion.hpp"
 #include "io/case_parse_util.hpp"
 
 namespace swell {
@@ -385,7 +386,7 @@ std::vector<BodySpec> CaseReader::read_bodies(const YAML::Node& node,
 }
 
 BodySpec CaseReader::read_body(const YAML::Node& node, const std::string& path) const {
-  expect_map(node, path, {"name", "kind", "shape", "fill", "walls", "layers", "open"});
+  expect_map(node, path, {"name", "kind", "shape", "fill", "walls", "layers", "open", "motion"});
   BodySpec body;
   body.line = line_of(node);
   body.name = name(require(node, path, "name"), child(path, "name"));
@@ -465,7 +466,7 @@ void CaseReader::check_fill_targets(const YAML::Node& node, const std::string& p
 void CaseReader::read_wall_options(const YAML::Node& node, const std::string& path,
                                    BodySpec& body) const {
   if (body.kind == BodySpec::Kind::Fluid) {
-    for (const std::string_view key : {"walls", "layers", "open"}) {
+    for (const std::string_view key : {"walls", "layers", "open", "motion"}) {
       if (auto v = find(node, key)) {
         fail(*v, child(path, key) + ": only boundary bodies take '" + std::string(key) +
                      "', but body '" + body.name + "' has kind fluid");
@@ -482,6 +483,9 @@ void CaseReader::read_wall_options(const YAML::Node& node, const std::string& pa
     expect(body.layers >= 1, *v, child(path, "layers"), "an integer >= 1");
   }
   if (auto v = find(node, "open")) body.open = read_open_faces(*v, child(path, "open"));
+  if (auto v = find(node, "motion"))
+    body.motion = read_motion(*this, *v, child(path, "motion"),
+                              std::filesystem::path(file_).parent_path().string());
 }
 
 std::vector<std::string> CaseReader::read_open_faces(const YAML::Node& node,

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bc/motion.hpp"
 #include "geometry/shape_spec.hpp"
 
 namespace swell {
@@ -30,6 +31,8 @@ struct BodySpec {
   int layers = 3;
   // Faces of a box tank left open (no wall particles): any of xmin, xmax, ymin, ymax, zmin, zmax.
   std::vector<std::string> open;
+  // Boundary bodies: prescribed motion (bc/motion.hpp); type None keeps the body fixed.
+  MotionSpec motion;
   int line = 0;  // line in the case file, for messages
 };
 

@@ -66,16 +66,10 @@ void clock_fields(C& c, Fn&& fn) {
 // Every ParticleSet array, as datasets of /particles in a checkpoint (cf. for_each_array).
 template <class PS, class Fn>
 void checkpoint_arrays(PS& ps, Fn&& fn) {
-  fn("pos", ps.pos);
-  fn("vel", ps.vel);
-  fn("rho", ps.rho);
-  fn("pos0", ps.pos0);
-  fn("vel0", ps.vel0);
-  fn("rho0", ps.rho0);
-  fn("mass", ps.mass);
-  fn("kind", ps.kind);
-  fn("body", ps.body);
-  fn("id", ps.id);
+  // Every enabled field of the table, under its own name (optional fields only when in use).
+  ps.for_each_field([&](const FieldInfo& f, auto& a) {
+    if (ps.enabled(f)) fn(f.name, a);
+  });
 }
 
 void write_metadata(const Loc& root, const RunMetadata& m) {
@@ -250,14 +244,11 @@ void Hdf5RunFile::write_snapshot(long step, double time, const ParticleSet<D>& p
   {
     Handle g = create_group(particles, name);
     const Loc snap = particles.at(g.get(), name);
-    write_column(snap, "pos", ps.pos, n, true);
-    write_column(snap, "vel", ps.vel, n, true);
-    write_column(snap, "rho", ps.rho, n, true);
+    // The fields of the table that have a snapshot name, plus the pressure.
+    ps.for_each_field([&](const FieldInfo& f, const auto& a) {
+      if (f.snapshot && ps.enabled(f)) write_column(snap, f.snapshot, a, n, true);
+    });
     write_column(snap, "p", pressure, n, true);
-    write_column(snap, "mass", ps.mass, n, true);
-    write_column(snap, "type", ps.kind, n, true);
-    write_column(snap, "body", ps.body, n, true);
-    write_column(snap, "id", ps.id, n, true);
     // Attributes last: a group without them was cut short and is skipped by readers.
     write_attr(snap, "time", time);
     write_attr<std::int64_t>(snap, "step", step);
@@ -400,10 +391,21 @@ Checkpoint<D> read_checkpoint(const std::string& path) {
   {
     Handle g = open_group(root, "particles");
     const Loc p = root.at(g.get(), "particles");
-    checkpoint_arrays(ps, [&](const char* name, auto& v) { read_column(p, name, total, v); });
-    for (Kind k : ps.kind) {
-      if (k != Kind::Fluid && k != Kind::Boundary)
-        fail(path, p.dataset("kind"), "holds a value other than 0 (fluid) or 1 (boundary)");
+    if (H5Lexists(g.get(), "role", H5P_DEFAULT) <= 0 ||
+        H5Lexists(g.get(), "rho_prev", H5P_DEFAULT) <= 0)
+      fail(path, "group '/particles'",
+           "was written by a Swell before 0.2 (no 'role' or 'rho_prev' dataset); restart needs a "
+           "checkpoint of this version: run the case again from the start");
+    ps.for_each_field([&](const FieldInfo& fi, auto& v) {
+      // Optional fields are restored when the checkpoint holds them.
+      if (fi.optional && H5Lexists(g.get(), fi.name, H5P_DEFAULT) <= 0) return;
+      read_column(p, fi.name, total, v);
+      if (fi.optional) ps.mark_enabled(fi);
+    });
+    for (Role r : ps.role) {
+      if (!is_valid_role(static_cast<std::uint8_t>(r)))
+        fail(path, p.dataset("role"),
+             "holds a value other than 0 (fluid), 1 (fixed wall), 2 (moving wall) or 3 (floating)");
     }
     ps.n_active = n_active;
   }

@@ -5,16 +5,20 @@
 //                                  dim, dp, h, c0, rho0, n_fluid, n_boundary, body_names[]
 //   /metadata/case_text            scalar string dataset: the case file as read
 //   /particles/<step, 10 digits>   group; attributes time (double), step (int64), written last
-//       pos, vel (N x D double), rho, p, mass (N double), type (N uint8: 0 fluid, 1 boundary),
+//       pos, vel (N x D double), rho, p, mass (N double), type (N uint8: the role, 0 fluid,
+//                                  1 fixed wall, 2 moving wall, 3 floating),
 //       body (N uint16), id (N uint32) over the active particles only
 //
 // Checkpoint layout (a separate file, everything needed to continue a run bit for bit):
 //   /               attributes dim, n_active, total, complete (=1, written last)
-//   /particles      pos, vel, pos0, vel0 (total x D), rho, rho0, mass (total), kind, body, id,
-//                   over the whole storage [0, total()) in the current order
+//   /particles      every enabled field of ParticleSet's field table under its name (pos, vel,
+//                   rho, pos_prev, vel_prev, rho_prev, mass, role, body, id, and pos_ref in
+//                   runs with moving bodies), over the whole storage [0, total()) in the
+//                   current order
 //   /clock          attributes time, steps, dt, first_dt, verlet_counter,
 //                   excluded_out_of_domain, excluded_non_finite, excluded_density_out_of_range
-//   /schedule       datasets names (strings) and values (double), the runner's timers
+//   /schedule       datasets names (strings) and values (double), the runner's timers and
+//                   the state the step hooks save (bc/ modules; names "hook.<module>.<key>")
 //
 // Every failure is a std::runtime_error naming the file and the object involved.
 #pragma once
@@ -25,8 +29,8 @@
 #include <utility>
 #include <vector>
 
-#include "solver/particle_set.hpp"
-#include "solver/simulation.hpp"
+#include "solver/state/particle_set.hpp"
+#include "solver/time/clock.hpp"
 
 namespace swell {
 

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "solver/types.hpp"
+#include "solver/state/types.hpp"
 
 namespace swell::hdf5 {
 
@@ -256,14 +256,14 @@ void read_field(const Loc& g, const char* name, T& value) {
 }
 
 // How a per-particle array is stored: Vec<D> as D doubles per row (cols = D), scalars and
-// Kind as one value per row (cols = 0: a 1-D dataset).
+// Role as one value per row (cols = 0: a 1-D dataset).
 template <class T>
 struct Column {
   using Scalar = T;
   static constexpr int cols = 0;
 };
 template <>
-struct Column<Kind> {
+struct Column<Role> {
   using Scalar = std::uint8_t;
   static constexpr int cols = 0;
 };

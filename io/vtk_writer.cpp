@@ -44,7 +44,7 @@ void write_vtp(const std::string& path, const ParticleSet<D>& ps,
   std::vector<std::size_t> sel;
   sel.reserve(ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    const bool fluid = ps.kind[i] == Kind::Fluid;
+    const bool fluid = ps.role[i] == Role::Fluid;
     if (filter == ParticleFilter::All || (filter == ParticleFilter::Fluid) == fluid)
       sel.push_back(i);
   }
@@ -85,7 +85,7 @@ void write_vtp(const std::string& path, const ParticleSet<D>& ps,
     vel->SetTypedTuple(k, v);
     rho->SetValue(k, static_cast<float>(ps.rho[i]));
     press->SetValue(k, static_cast<float>(pressure[i]));
-    type->SetValue(k, static_cast<unsigned char>(ps.kind[i]));
+    type->SetValue(k, static_cast<unsigned char>(ps.role[i]));
     body->SetValue(k, ps.body[i]);
     id->SetValue(k, ps.id[i]);
     conn->SetValue(k, k);

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "solver/particle_set.hpp"
+#include "solver/state/particle_set.hpp"
 
 namespace swell {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "solver/particle_set.hpp"
+#include "solver/state/particle_set.hpp"
 
 namespace swell {
 
@@ -23,7 +23,7 @@ template <int D>
 FluidTotals<D> fluid_totals(const ParticleSet<D>& ps) {
   FluidTotals<D> t;
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps.kind[i] != Kind::Fluid) continue;
+    if (ps.role[i] != Role::Fluid) continue;
     ++t.count;
     t.mass += ps.mass[i];
     t.kinetic_energy += 0.5 * ps.mass[i] * ps.vel[i].squaredNorm();
@@ -41,7 +41,7 @@ double surge_front(const ParticleSet<D>& ps, const Vec<D>& up, double floor, dou
                    double dp) {
   double front = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps.kind[i] != Kind::Fluid) continue;
+    if (ps.role[i] != Role::Fluid) continue;
     const double z = ps.pos[i].dot(up) - floor;
     if (z >= 0.0 && z <= band) front = std::max(front, ps.pos[i][0] + 0.5 * dp);
   }

@@ -21,7 +21,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "solver/particle_set.hpp"
+#include "solver/state/particle_set.hpp"
 
 namespace swell {
 
@@ -32,7 +32,7 @@ template <int D, class Fn>
 void for_fluid_near(const ParticleSet<D>& ps, const Vec<D>& x, double support, Fn&& fn) {
   const double s2 = support * support;
   for (std::size_t j = 0; j < ps.size(); ++j) {
-    if (ps.kind[j] != Kind::Fluid) continue;
+    if (ps.role[j] != Role::Fluid) continue;
     const Vec<D> d = x - ps.pos[j];
     if (d.cwiseAbs().maxCoeff() >= support) continue;  // cheap box test first
     const double r2 = d.squaredNorm();
@@ -106,7 +106,7 @@ double water_height(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_b
   // Prefilter: fluid particles within one support of the line, horizontally.
   std::vector<std::uint32_t> near;
   for (std::size_t j = 0; j < ps.size(); ++j) {
-    if (ps.kind[j] != Kind::Fluid) continue;
+    if (ps.role[j] != Role::Fluid) continue;
     double h2 = 0.0;
     for (int d = 0; d < D; ++d) {
       if (d == up) continue;
@@ -168,7 +168,7 @@ BodyLoad<D> body_load(const ParticleSet<D>& ps, const std::vector<Vec<D>>& accel
     throw std::invalid_argument("body_load: acceleration array shorter than the particle set");
   BodyLoad<D> load;
   for (std::size_t a = 0; a < ps.size(); ++a) {
-    if (ps.body[a] != body || ps.kind[a] != Kind::Boundary) continue;
+    if (ps.body[a] != body || ps.role[a] != Role::FixedWall) continue;
     const Vec<D> f = ps.mass[a] * acceleration[a];
     Eigen::Vector3d f3 = Eigen::Vector3d::Zero(), r3 = Eigen::Vector3d::Zero();
     f3.template head<D>() = f;

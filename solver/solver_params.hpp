@@ -3,7 +3,7 @@
 
 #include <Eigen/Core>
 
-#include "solver/kernels.hpp"
+#include "solver/physics/kernels.hpp"
 
 namespace swell {
 

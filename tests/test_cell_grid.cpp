@@ -13,9 +13,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "solver/cell_grid.hpp"
-#include "solver/particle_set.hpp"
-#include "solver/types.hpp"
+#include "solver/neighbours/cell_grid.hpp"
+#include "solver/state/particle_set.hpp"
+#include "solver/state/types.hpp"
 
 namespace swell {
 namespace {
@@ -47,7 +47,7 @@ void add_particle(ParticleSet<D>& ps, const std::type_identity_t<Vec<D>>& x) {
   const double id = static_cast<double>(ps.total());
   Vec<D> v;
   for (int d = 0; d < D; ++d) v[d] = id + 0.25 * d;
-  ps.add(x, v, 1000.0 + id, 0.5 * id, ps.total() % 3 == 0 ? Kind::Boundary : Kind::Fluid,
+  ps.add(x, v, 1000.0 + id, 0.5 * id, ps.total() % 3 == 0 ? Role::FixedWall : Role::Fluid,
          static_cast<std::uint16_t>(ps.total() % 7));
 }
 
@@ -123,7 +123,7 @@ void expect_consistent(const ParticleSet<D>& ps, const std::vector<Vec<D>>& orig
     EXPECT_EQ(ps.vel[k][0], static_cast<double>(id)) << "slot " << k;
     EXPECT_EQ(ps.mass[k], 0.5 * id);
     EXPECT_EQ(ps.body[k], id % 7);
-    EXPECT_EQ(ps.kind[k], id % 3 == 0 ? Kind::Boundary : Kind::Fluid);
+    EXPECT_EQ(ps.role[k], id % 3 == 0 ? Role::FixedWall : Role::Fluid);
     EXPECT_EQ(ps.id[k], id);
   }
 }
@@ -211,7 +211,7 @@ TYPED_TEST(CellGridTest, ExcludesOutOfDomainAndNonFinite) {
     bad_value.push_back(static_cast<std::uint32_t>(ps.total()));
     add_particle(ps, 0.5 * (box.lo + box.hi));
     ps.rho.back() = kNaN;
-    ps.rho0.back() = kNaN;
+    ps.rho_prev.back() = kNaN;
   }
   // More valid particles after the bad ones, so exclusion really has to move things.
   add_inside(ps, box, rng, 500);

@@ -7,7 +7,8 @@
 #include <random>
 
 #include "solver/diagnostics.hpp"
-#include "solver/simulation.hpp"
+#include "solver/time/simulation.hpp"
+#include "bc/dbc.hpp"
 
 namespace swell {
 namespace {
@@ -28,7 +29,7 @@ ParticleSet<D> random_block(int n_side, double dp, double rho0, unsigned seed) {
         for (int d = 0; d < D; ++d) v[d] = 0.5 * u(rng);
         // Density perturbed by +-1% so pressures differ between particles.
         ps.add(x, v, rho0 * (1.0 + 0.01 * u(rng)), rho0 * std::pow(dp, D) * (1.0 + 0.2 * u(rng)),
-               Kind::Fluid, 0);
+               Role::Fluid, 0);
       }
   return ps;
 }
@@ -54,7 +55,7 @@ void check_momentum(IntegratorType integ, ViscosityModel visc) {
   const double dp = 0.01;
   const int n_side = D == 2 ? 24 : 10;
   Simulation<D> sim(free_params<D>(dp, n_side, integ, visc),
-                    random_block<D>(n_side, dp, 1000.0, 7));
+                    random_block<D>(n_side, dp, 1000.0, 7), make_dbc<D>());
   const auto before = fluid_totals(sim.particles());
   const auto mass_by_id = [&sim]() {
     std::vector<double> m(sim.particles().total());

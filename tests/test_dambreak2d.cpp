@@ -46,7 +46,7 @@ TEST(DamBreak2D, MartinMoyceFront) {
   const double t_end = 0.25;  // the front reaches the far wall (Z = 5) near T = 4, t = 0.22 s
   CaseSetup<2> setup = setup_case<2>(spec);
   const double floor = setup.floor, band = 2.0 * setup.params.h;
-  Simulation<2> sim(setup.params, std::move(setup.particles));
+  Simulation<2> sim = make_simulation<2>(setup, std::move(setup.particles));
   const double mass0 = fluid_totals(sim.particles()).mass;
   const std::size_t n_fluid = sim.fluid_count();
 
@@ -60,7 +60,7 @@ TEST(DamBreak2D, MartinMoyceFront) {
     front.emplace_back(sim.time() * t_scale,
                        surge_front(ps, Vec<2>(0, 1), floor, band, spec.dp) / kA);
     for (std::size_t i = 0; i < ps.size(); ++i)
-      if (ps.kind[i] == Kind::Fluid &&
+      if (ps.role[i] == Role::Fluid &&
           (ps.pos[i].x() < 0 || ps.pos[i].x() > kTankLength || ps.pos[i].y() < 0))
         leaked = true;
   }

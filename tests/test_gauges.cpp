@@ -13,7 +13,7 @@
 #include "io/case_file.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/gauges.hpp"
-#include "solver/kernels.hpp"
+#include "solver/physics/kernels.hpp"
 
 namespace swell {
 namespace {
@@ -29,7 +29,7 @@ ParticleSet<2> lattice2(const Vec<2>& centre, int n, double dp, double rho) {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i)
       ps.add(centre + Vec<2>(i * dp - off, j * dp - off), Vec<2>::Zero(), rho, rho * dp * dp,
-             Kind::Fluid, 0);
+             Role::Fluid, 0);
   return ps;
 }
 
@@ -40,7 +40,7 @@ TEST(ProbePressure, UniformFieldIsReproducedExactly) {
   ParticleSet<2> ps;
   for (int k = 0; k < 400; ++k)
     ps.add(Vec<2>(0.2 * u(rng), 0.2 * u(rng)), Vec<2>::Zero(), 990.0 + 20.0 * u(rng),
-           0.1 + 0.01 * u(rng), Kind::Fluid, 0);
+           0.1 + 0.01 * u(rng), Role::Fluid, 0);
   const std::vector<double> p(ps.size(), 1234.5);
   const WendlandC2<2> k(0.0141);
   for (const Vec<2>& x : {Vec<2>(0.1, 0.1), Vec<2>(0.0, 0.05), Vec<2>(0.19, 0.2)}) {
@@ -71,7 +71,7 @@ TEST(ProbePressure, DryPointIsNaNAndWallsAreIgnored) {
   const double dp = 0.01;
   ParticleSet<2> ps = lattice2(Vec<2>(0.0, 0.0), 11, dp, 1000.0);
   // A wall particle with a huge pressure right at the probe point must not be seen.
-  ps.add(Vec<2>(1.0, 1.0), Vec<2>::Zero(), 1000.0, 0.1, Kind::Boundary, 1);
+  ps.add(Vec<2>(1.0, 1.0), Vec<2>::Zero(), 1000.0, 0.1, Role::FixedWall, 1);
   std::vector<double> p(ps.size(), 100.0);
   p.back() = 1e9;
   const WendlandC2<2> k(1.4 * dp);
@@ -97,7 +97,7 @@ TEST(ProbeVelocity, LinearFieldIn3DIsExact) {
       for (int l = -4; l <= 4; ++l) {
         const Vec<3> x = c + dp * Vec<3>(i, j, l);
         const Vec<3> v(1.0 + 2.0 * x.x(), -0.5 * x.z(), 3.0 * x.y() - x.x());
-        ps.add(x, v, 1000.0, 1000.0 * dp * dp * dp, Kind::Fluid, 0);
+        ps.add(x, v, 1000.0, 1000.0 * dp * dp * dp, Role::Fluid, 0);
       }
   const Vec<3> expected(1.0 + 2.0 * c.x(), -0.5 * c.z(), 3.0 * c.y() - c.x());
   const Vec<3> v = probe_velocity(ps, WendlandC2<3>(1.7 * dp), c);
@@ -114,7 +114,7 @@ ParticleSet<2> block2(double w, double hgt, double dp, double rho) {
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
       ps.add(Vec<2>((i + 0.5) * dp, (j + 0.5) * dp), Vec<2>::Zero(), rho, rho * dp * dp,
-             Kind::Fluid, 0);
+             Role::Fluid, 0);
   return ps;
 }
 
@@ -124,7 +124,7 @@ TEST(WaterHeight, SingleParticleCrossingIsTheLinearInterpolation) {
   const WendlandC2<2> k(0.02);
   const double m = 0.6, rho0 = 2.0 * m * k.w(0.0) * 0.5;  // threshold = 0.5 m W(0)
   ParticleSet<2> ps;
-  ps.add(Vec<2>(0.0, 0.0), Vec<2>::Zero(), rho0, m, Kind::Fluid, 0);
+  ps.add(Vec<2>(0.0, 0.0), Vec<2>::Zero(), rho0, m, Role::Fluid, 0);
   const double dz = 0.25 * k.h, thr = 0.5 * rho0;
   // First sample with m W < thr:
   int n = 0;
@@ -165,10 +165,10 @@ TEST(WaterHeight, LatticeBlockSurfaceAndDryAndFullColumns) {
 
 TEST(BodyLoad, TwoParticlesGiveExactForceAndMoment2D) {
   ParticleSet<2> ps;
-  ps.add(Vec<2>(1.0, 0.0), Vec<2>::Zero(), 1000.0, 2.0, Kind::Boundary, 3);
-  ps.add(Vec<2>(0.0, 2.0), Vec<2>::Zero(), 1000.0, 0.5, Kind::Boundary, 3);
-  ps.add(Vec<2>(5.0, 5.0), Vec<2>::Zero(), 1000.0, 7.0, Kind::Boundary, 1);  // other body
-  ps.add(Vec<2>(5.0, 5.0), Vec<2>::Zero(), 1000.0, 7.0, Kind::Fluid, 3);     // not a wall
+  ps.add(Vec<2>(1.0, 0.0), Vec<2>::Zero(), 1000.0, 2.0, Role::FixedWall, 3);
+  ps.add(Vec<2>(0.0, 2.0), Vec<2>::Zero(), 1000.0, 0.5, Role::FixedWall, 3);
+  ps.add(Vec<2>(5.0, 5.0), Vec<2>::Zero(), 1000.0, 7.0, Role::FixedWall, 1);  // other body
+  ps.add(Vec<2>(5.0, 5.0), Vec<2>::Zero(), 1000.0, 7.0, Role::Fluid, 3);     // not a wall
   const std::vector<Vec<2>> ace = {Vec<2>(0.0, 3.0), Vec<2>(4.0, 0.0), Vec<2>(9.0, 9.0),
                                    Vec<2>(9.0, 9.0)};
   // F = 2 (0, 3) + 0.5 (4, 0) = (2, 6).
@@ -191,8 +191,8 @@ TEST(BodyLoad, TwoParticlesGiveExactForceAndMoment2D) {
 
 TEST(BodyLoad, TwoParticlesGiveExactForceAndMoment3D) {
   ParticleSet<3> ps;
-  ps.add(Vec<3>(1.0, 0.0, 0.0), Vec<3>::Zero(), 1000.0, 1.0, Kind::Boundary, 0);
-  ps.add(Vec<3>(0.0, 0.0, 2.0), Vec<3>::Zero(), 1000.0, 2.0, Kind::Boundary, 0);
+  ps.add(Vec<3>(1.0, 0.0, 0.0), Vec<3>::Zero(), 1000.0, 1.0, Role::FixedWall, 0);
+  ps.add(Vec<3>(0.0, 0.0, 2.0), Vec<3>::Zero(), 1000.0, 2.0, Role::FixedWall, 0);
   const std::vector<Vec<3>> ace = {Vec<3>(0.0, 1.0, 0.0), Vec<3>(1.0, 0.0, 0.0)};
   const BodyLoad<3> l = body_load(ps, ace, 0, Eigen::Vector3d::Zero());
   // F = (0, 1, 0) + (2, 0, 0); M = (1,0,0) x (0,1,0) + (0,0,2) x (2,0,0) = (0,0,1) + (0,4,0).
@@ -228,7 +228,7 @@ SettledTank settle(const std::string& bodies_yaml) {
   SettledTank t;
   t.bodies = setup.bodies;
   t.h = setup.params.h;
-  t.sim = std::make_unique<Simulation<2>>(setup.params, std::move(setup.particles));
+  t.sim = std::make_unique<Simulation<2>>(make_simulation<2>(setup, std::move(setup.particles)));
   t.mean_load.assign(t.bodies.size(), BodyLoad<2>{});
   long samples = 0;
   while (t.sim->time() < kTEnd) {

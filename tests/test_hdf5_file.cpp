@@ -53,13 +53,13 @@ ParticleSet<D> random_particles(std::size_t n, std::size_t excluded, unsigned se
   ParticleSet<D> ps;
   for (std::size_t i = 0; i < n; ++i) {
     ps.add(vec(), vec(), 1000.0 + 10.0 * u(rng), 0.5 + 0.1 * u(rng),
-           i % 3 == 0 ? Kind::Boundary : Kind::Fluid, static_cast<std::uint16_t>(i % 4));
+           i % 3 == 0 ? Role::FixedWall : Role::Fluid, static_cast<std::uint16_t>(i % 4));
   }
   // Integrator memory differs from the current state, as in the middle of a step.
   for (std::size_t i = 0; i < n; ++i) {
-    ps.pos0[i] += 1e-3 * vec();
-    ps.vel0[i] = vec();
-    ps.rho0[i] = 1000.0 + u(rng);
+    ps.pos_prev[i] += 1e-3 * vec();
+    ps.vel_prev[i] = vec();
+    ps.rho_prev[i] = 1000.0 + u(rng);
   }
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
@@ -119,7 +119,7 @@ void expect_snapshot_matches(const SnapshotData<D>& s, const ParticleSet<D>& ps,
   EXPECT_TRUE(same_bits(s.body, head(ps.body, n)));
   EXPECT_TRUE(same_bits(s.id, head(ps.id, n)));
   ASSERT_EQ(s.type.size(), n);
-  for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(s.type[i], static_cast<std::uint8_t>(ps.kind[i]));
+  for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(s.type[i], static_cast<std::uint8_t>(ps.role[i]));
 }
 
 template <int D>
@@ -313,11 +313,11 @@ void expect_same_checkpoint(const Checkpoint<D>& c, const ParticleSet<D>& ps,
   EXPECT_TRUE(same_bits(r.pos, ps.pos));  // includes the NaN of the excluded particle
   EXPECT_TRUE(same_bits(r.vel, ps.vel));
   EXPECT_TRUE(same_bits(r.rho, ps.rho));
-  EXPECT_TRUE(same_bits(r.pos0, ps.pos0));
-  EXPECT_TRUE(same_bits(r.vel0, ps.vel0));
-  EXPECT_TRUE(same_bits(r.rho0, ps.rho0));
+  EXPECT_TRUE(same_bits(r.pos_prev, ps.pos_prev));
+  EXPECT_TRUE(same_bits(r.vel_prev, ps.vel_prev));
+  EXPECT_TRUE(same_bits(r.rho_prev, ps.rho_prev));
   EXPECT_TRUE(same_bits(r.mass, ps.mass));
-  EXPECT_TRUE(same_bits(r.kind, ps.kind));
+  EXPECT_TRUE(same_bits(r.role, ps.role));
   EXPECT_TRUE(same_bits(r.body, ps.body));
   EXPECT_TRUE(same_bits(r.id, ps.id));
   EXPECT_EQ(std::memcmp(&c.clock.time, &clock.time, sizeof(double)), 0);

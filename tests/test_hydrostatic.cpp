@@ -36,7 +36,7 @@ template <int D>
 void check_hydrostatic(double dp, double t_end, double tol) {
   const CaseSpec spec = tank_case(D, dp, t_end);
   CaseSetup<D> setup = setup_case<D>(spec);
-  Simulation<D> sim(setup.params, std::move(setup.particles));
+  Simulation<D> sim = make_simulation<D>(setup, std::move(setup.particles));
 
   // Starts at rest: after 50 steps the fastest particle moves far slower than sqrt(g H).
   for (int s = 0; s < 50; ++s) sim.step();
@@ -54,7 +54,7 @@ void check_hydrostatic(double dp, double t_end, double tol) {
   std::vector<double> sum_p(nbands, 0.0), sum_d(nbands, 0.0);
   std::vector<int> count(nbands, 0);
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps.kind[i] != Kind::Fluid) continue;
+    if (ps.role[i] != Role::Fluid) continue;
     for (int d = 0; d < D; ++d) {
       const double hi = d == 0 ? kWidth : (d == up ? 0.3 : 0.2);
       EXPECT_GT(ps.pos[i][d], 0.0) << "particle left the tank";

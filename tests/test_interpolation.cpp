@@ -14,8 +14,8 @@
 #include <numbers>
 #include <vector>
 
-#include "solver/kernels.hpp"
-#include "solver/types.hpp"
+#include "solver/physics/kernels.hpp"
+#include "solver/state/types.hpp"
 
 namespace swell {
 namespace {

@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "solver/kernels.hpp"
-#include "solver/types.hpp"
+#include "solver/physics/kernels.hpp"
+#include "solver/state/types.hpp"
 
 namespace swell {
 namespace {

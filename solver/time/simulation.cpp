@@ -1,4 +1,4 @@
-#include "solver/simulation.hpp"
+#include "solver/time/simulation.hpp"
 
 #include <omp.h>
 
@@ -6,14 +6,29 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 namespace swell {
 
 template <int D>
-Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles)
-    : prm_(params), eos_(params.rho0, params.c0, params.gamma), ps_(std::move(particles)) {
+Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles,
+                          std::unique_ptr<BoundaryModel<D>> boundary, Hooks hooks)
+    : prm_(params),
+      eos_(params.rho0, params.c0, params.gamma),
+      ps_(std::move(particles)),
+      boundary_(std::move(boundary)),
+      hooks_(std::move(hooks)) {
   if (!(prm_.h > 0.0) || !(prm_.c0 > 0.0) || !(prm_.dp > 0.0))
     throw std::invalid_argument("Simulation: h, c0 and dp must be positive");
+  if (!(prm_.gamma > 1.0)) throw std::invalid_argument("Simulation: the Tait gamma must be > 1");
+  if (!boundary_) throw std::invalid_argument("Simulation: a boundary model is required");
+  for (const auto& h : hooks_)
+    if (!h) throw std::invalid_argument("Simulation: null step hook");
+  for (std::size_t i = 0; i < ps_.total(); ++i)
+    if (ps_.role[i] == Role::Floating)
+      throw std::invalid_argument(
+          "Simulation: floating bodies are reserved but not implemented yet (particle id " +
+          std::to_string(ps_.id[i]) + ")");
   const double support = kernel_support_factor(prm_.kernel) * prm_.h;
   grid_ =
       CellGrid<D>(prm_.domain_min.template head<D>(), prm_.domain_max.template head<D>(), support);
@@ -23,9 +38,51 @@ Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles)
 }
 
 template <int D>
+template <class Stage>
+void Simulation<D>::for_each_hook(Stage&& stage) {
+  stage(static_cast<StepHook<D>&>(*boundary_));
+  for (auto& h : hooks_) stage(*h);
+}
+
+template <int D>
+void Simulation<D>::restore(const SimulationClock& c) {
+  time_ = c.time;
+  steps_ = c.steps;
+  dt_ = c.dt;
+  first_dt_ = c.first_dt;
+  verlet_counter_ = c.verlet_counter;
+  // Particles excluded by the constructor's sort were still active when saved.
+  excluded_.out_of_domain += c.excluded.out_of_domain;
+  excluded_.non_finite += c.excluded.non_finite;
+  excluded_.density_out_of_range += c.excluded.density_out_of_range;
+}
+
+template <int D>
+void Simulation<D>::save_hooks(std::map<std::string, double>& out) const {
+  auto one = [&](const StepHook<D>& h) {
+    std::map<std::string, double> own;
+    h.save(own);
+    for (const auto& [k, v] : own) out["hook." + h.name() + "." + k] = v;
+  };
+  one(*boundary_);
+  for (const auto& h : hooks_) one(*h);
+}
+
+template <int D>
+void Simulation<D>::restore_hooks(const std::map<std::string, double>& in) {
+  for_each_hook([&](StepHook<D>& h) {
+    const std::string prefix = "hook." + h.name() + ".";
+    std::map<std::string, double> own;
+    for (auto it = in.lower_bound(prefix); it != in.end() && it->first.starts_with(prefix); ++it)
+      own[it->first.substr(prefix.size())] = it->second;
+    h.restore(own);
+  });
+}
+
+template <int D>
 std::size_t Simulation<D>::fluid_count() const {
   std::size_t n = 0;
-  for (std::size_t i = 0; i < ps_.size(); ++i) n += ps_.kind[i] == Kind::Fluid;
+  for (std::size_t i = 0; i < ps_.size(); ++i) n += is_fluid(ps_.role[i]);
   return n;
 }
 
@@ -42,16 +99,18 @@ template <int D>
 void Simulation<D>::evaluate() {
   sort_particles();
   const double t0 = omp_get_wtime();
-  compute_pressure(ps_, eos_, f_);
-  with_kernel<D>(prm_.kernel, prm_.h, [&](const auto& kernel) {
-    using K = std::decay_t<decltype(kernel)>;
-    if (prm_.viscosity == ViscosityModel::Artificial)
-      interact<D, K, ViscosityModel::Artificial>(ps_, grid_, kernel, prm_, f_);
-    else
-      interact<D, K, ViscosityModel::Laminar>(ps_, grid_, kernel, prm_, f_);
-    return 0;
-  });
+  StepState<D> s = state(time_);
+  for_each_hook([&](StepHook<D>& h) { h.before_forces(s); });
+  boundary_->forces(s);
+  for_each_hook([&](StepHook<D>& h) { h.after_forces(s); });
   times_.interaction += omp_get_wtime() - t0;
+}
+
+template <int D>
+void Simulation<D>::after_substep(double t) {
+  StepState<D> s = state(t);
+  for_each_hook([&](StepHook<D>& h) { h.prescribe(s); });
+  for_each_hook([&](StepHook<D>& h) { h.finish_density(s); });
 }
 
 // dt = CFL min(dt_f, dt_cv[, dt_nu]) with dt_f = sqrt(h / max|a|) and
@@ -62,7 +121,7 @@ double Simulation<D>::choose_dt() const {
   double a2max = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : a2max)
   for (long i = 0; i < n; ++i)
-    if (ps_.kind[i] == Kind::Fluid) a2max = std::max(a2max, f_.ace[i].squaredNorm());
+    if (is_fluid(ps_.role[i])) a2max = std::max(a2max, f_.ace[i].squaredNorm());
   const double h = prm_.h;
   double dt = h / (f_.cs_max + f_.visc_dt_max);
   if (a2max > 0.0) dt = std::min(dt, std::sqrt(h / std::sqrt(a2max)));
@@ -71,27 +130,23 @@ double Simulation<D>::choose_dt() const {
   return prm_.cfl * dt;
 }
 
-// DBC: the density of a wall particle never drops below rho0, so walls never pull fluid in.
-template <int D>
-void Simulation<D>::finish_density(std::size_t i) {
-  if (ps_.kind[i] == Kind::Boundary) {
-    if (ps_.rho[i] < prm_.rho0) ps_.rho[i] = prm_.rho0;
-  }
-}
-
 template <int D>
 void Simulation<D>::step() {
   if (prm_.integrator == IntegratorType::Verlet)
     step_verlet();
   else
     step_symplectic();
+  {
+    StepState<D> s = state(time_ + dt_);
+    for_each_hook([&](StepHook<D>& h) { h.after_integration(s); });
+  }
 
   // Density bounds (fluid): excluded and counted as DualSPHysics' RhopOut.
   const double lo = prm_.rho_min_factor * prm_.rho0, hi = prm_.rho_max_factor * prm_.rho0;
   // One pass also counts the fluid still in the run (no second O(N) scan per step).
   std::size_t out = 0, fluid_left = 0;
   for (std::size_t i = 0; i < ps_.size(); ++i) {
-    if (ps_.kind[i] != Kind::Fluid) continue;
+    if (!is_fluid(ps_.role[i])) continue;
     if (std::isfinite(ps_.rho[i]) && (ps_.rho[i] < lo || ps_.rho[i] > hi)) {
       ps_.pos[i].setConstant(std::numeric_limits<double>::quiet_NaN());
       ++out;
@@ -118,7 +173,9 @@ void Simulation<D>::step() {
 
 // Symplectic position-Verlet predictor-corrector as in DualSPHysics (Leimkuhler 1996):
 // half step with forces at n, full step with forces at n+1/2; density by the
-// rho^{n+1} = rho^n (2 - eps)/(2 + eps), eps = -(drho/rho)^{n+1/2} dt update.
+// rho^{n+1} = rho^n (2 - eps)/(2 + eps), eps = -(drho/rho)^{n+1/2} dt update. Every role
+// integrates its density; only fluid integrates positions and velocities (moving walls take
+// theirs from the prescribe stage at t + dt/2 and t + dt).
 template <int D>
 void Simulation<D>::step_symplectic() {
   evaluate();
@@ -128,16 +185,16 @@ void Simulation<D>::step_symplectic() {
   const double half = 0.5 * dt_;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
-    ps_.pos0[i] = ps_.pos[i];
-    ps_.vel0[i] = ps_.vel[i];
-    ps_.rho0[i] = ps_.rho[i];
+    ps_.pos_prev[i] = ps_.pos[i];
+    ps_.vel_prev[i] = ps_.vel[i];
+    ps_.rho_prev[i] = ps_.rho[i];
     ps_.rho[i] += half * f_.drho[i];
-    if (ps_.kind[i] == Kind::Fluid) {
+    if (is_fluid(ps_.role[i])) {
       ps_.pos[i] += half * ps_.vel[i];
       ps_.vel[i] += half * f_.ace[i];
     }
-    finish_density(i);
   }
+  after_substep(time_ + half);
   times_.integration += omp_get_wtime() - t0;
 
   evaluate();
@@ -146,13 +203,13 @@ void Simulation<D>::step_symplectic() {
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < m; ++i) {
     const double eps = -f_.drho[i] / ps_.rho[i] * dt_;
-    ps_.rho[i] = ps_.rho0[i] * (2.0 - eps) / (2.0 + eps);
-    if (ps_.kind[i] == Kind::Fluid) {
-      ps_.vel[i] = ps_.vel0[i] + dt_ * f_.ace[i];
+    ps_.rho[i] = ps_.rho_prev[i] * (2.0 - eps) / (2.0 + eps);
+    if (is_fluid(ps_.role[i])) {
+      ps_.vel[i] = ps_.vel_prev[i] + dt_ * f_.ace[i];
       ps_.pos[i] += half * ps_.vel[i];
     }
-    finish_density(i);
   }
+  after_substep(time_ + dt_);
   times_.integration += omp_get_wtime() - t1;
 }
 
@@ -170,18 +227,18 @@ void Simulation<D>::step_verlet() {
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const double rho_new =
-        euler ? ps_.rho[i] + dt * f_.drho[i] : ps_.rho0[i] + 2.0 * dt * f_.drho[i];
-    ps_.rho0[i] = ps_.rho[i];
+        euler ? ps_.rho[i] + dt * f_.drho[i] : ps_.rho_prev[i] + 2.0 * dt * f_.drho[i];
+    ps_.rho_prev[i] = ps_.rho[i];
     ps_.rho[i] = rho_new;
-    if (ps_.kind[i] == Kind::Fluid) {
-      const Vec<D> v_new =
-          euler ? Vec<D>(ps_.vel[i] + dt * f_.ace[i]) : Vec<D>(ps_.vel0[i] + 2.0 * dt * f_.ace[i]);
+    if (is_fluid(ps_.role[i])) {
+      const Vec<D> v_new = euler ? Vec<D>(ps_.vel[i] + dt * f_.ace[i])
+                                 : Vec<D>(ps_.vel_prev[i] + 2.0 * dt * f_.ace[i]);
       ps_.pos[i] += dt * ps_.vel[i] + 0.5 * dt2 * f_.ace[i];
-      ps_.vel0[i] = ps_.vel[i];
+      ps_.vel_prev[i] = ps_.vel[i];
       ps_.vel[i] = v_new;
     }
-    finish_density(i);
   }
+  after_substep(time_ + dt_);
   times_.integration += omp_get_wtime() - t0;
 }
 

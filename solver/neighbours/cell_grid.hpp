@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "solver/particle_set.hpp"
+#include "solver/state/particle_set.hpp"
 
 namespace swell {
 
@@ -112,7 +112,7 @@ class CellGrid {
       std::uint8_t any = 0;
       for (std::uint32_t i = start_[c]; i < start_[c + 1]; ++i) {
         cell_of_[i] = static_cast<std::uint32_t>(c);
-        any |= ps.kind[i] == Kind::Fluid;
+        any |= ps.role[i] == Role::Fluid;
       }
       has_fluid_[c] = any;
     }

@@ -1,0 +1,123 @@
+// Moving boundary bodies as a step hook: at every substep of either integrator (the prescribe
+// stage) the particles of each moving body take the position and velocity of their body's
+// motion law (bc/motion.hpp) at the substep time, from their body-frame reference position
+// (the pos_ref field). The wall velocity then enters continuity, viscosity and the force on
+// the fluid through the pair loop like any particle velocity. A pure function of time, so a
+// restart moves the bodies exactly as the uninterrupted run; the checkpoint keeps each body's
+// pose at the last prescribed time, and a restart from a case whose motion differs is refused.
+#pragma once
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bc/motion.hpp"
+#include "solver/state/particle_set.hpp"
+#include "solver/time/step_hooks.hpp"
+
+namespace swell {
+
+template <int D>
+class MovingBodies final : public StepHook<D> {
+ public:
+  // laws[b]: the motion of body b (body id = index; a default MotionLaw does not move).
+  explicit MovingBodies(std::vector<MotionLaw> laws)
+      : laws_(std::move(laws)), poses_(laws_.size()), placements_(laws_.size()) {}
+
+  std::string name() const override { return "motion"; }
+  const std::vector<MotionLaw>& laws() const { return laws_; }
+
+  static bool any_moves(const std::vector<MotionLaw>& laws) {
+    for (const auto& l : laws)
+      if (l.moves()) return true;
+    return false;
+  }
+
+  // Before the run: wall particles of moving bodies become moving walls with their current
+  // position as reference (pos_ref enabled), placed at their pose at t = 0.
+  static void prepare(ParticleSet<D>& ps, const std::vector<MotionLaw>& laws) {
+    if (!any_moves(laws)) return;
+    for (std::size_t i = 0; i < ps.total(); ++i) {
+      const auto b = ps.body[i];
+      if (is_wall(ps.role[i]) && b < laws.size() && laws[b].moves()) ps.role[i] = Role::MovingWall;
+    }
+    ps.enable("pos_ref", ps.pos);
+    MovingBodies<D> m(laws);
+    m.place_all(ps, 0.0);
+  }
+
+  void prescribe(StepState<D>& s) override { place_all(s.particles, s.time); }
+
+  void save(std::map<std::string, double>& out) const override {
+    out["time"] = t_last_;
+    for (std::size_t b = 0; b < laws_.size(); ++b) {
+      if (!laws_[b].moves()) continue;
+      const std::string k = "body" + std::to_string(b) + ".";
+      for (int d = 0; d < 3; ++d) out[k + "d" + std::to_string(d)] = poses_[b].d[d];
+      out[k + "theta"] = poses_[b].theta;
+    }
+  }
+
+  // The saved poses must be what this case's laws give at the saved time: otherwise the case's
+  // motion was changed since the checkpoint and continuing would jump the bodies.
+  void restore(const std::map<std::string, double>& in) override {
+    const auto t = in.find("time");
+    if (t == in.end()) {
+      if (any_moves(laws_))
+        throw std::invalid_argument(
+            "checkpoint: it holds no motion state, but the case has moving bodies (was it "
+            "written by a run of another case?)");
+      return;
+    }
+    t_last_ = t->second;
+    for (std::size_t b = 0; b < laws_.size(); ++b) {
+      if (!laws_[b].moves()) continue;
+      poses_[b] = laws_[b].pose(t_last_);
+      const std::string k = "body" + std::to_string(b) + ".";
+      auto saved = [&](const std::string& key) {
+        const auto it = in.find(k + key);
+        if (it == in.end())
+          throw std::invalid_argument("checkpoint: no motion state for body " + std::to_string(b) +
+                                      ", which moves in the case (the case was changed)");
+        return it->second;
+      };
+      double diff = std::abs(saved("theta") - poses_[b].theta);
+      for (int d = 0; d < 3; ++d) diff = std::max(diff, std::abs(saved("d" + std::to_string(d)) - poses_[b].d[d]));
+      if (!(diff <= 1e-12 * (1.0 + poses_[b].d.norm() + std::abs(poses_[b].theta))))
+        throw std::invalid_argument(
+            "checkpoint: body " + std::to_string(b) + "'s pose at t = " + std::to_string(t_last_) +
+            " s differs from what the case's motion gives (the motion was changed since the "
+            "checkpoint; restart needs the case the run was started with)");
+    }
+  }
+
+ private:
+  void place_all(ParticleSet<D>& ps, double t) {
+    for (std::size_t b = 0; b < laws_.size(); ++b) {
+      if (!laws_[b].moves()) continue;
+      poses_[b] = laws_[b].pose(t);
+      placements_[b] = laws_[b].placement(poses_[b]);
+    }
+    t_last_ = t;
+    const long n = static_cast<long>(ps.size());
+#pragma omp parallel for schedule(static) if (n > ParticleSet<D>::kParallelMin)
+    for (long i = 0; i < n; ++i) {
+      if (ps.role[i] != Role::MovingWall) continue;
+      const auto b = ps.body[i];
+      Eigen::Vector3d ref = Eigen::Vector3d::Zero(), x, v;
+      ref.template head<D>() = ps.pos_ref[i];
+      placements_[b].apply(ref, x, v);
+      ps.pos[i] = x.template head<D>();
+      ps.vel[i] = v.template head<D>();
+    }
+  }
+
+  std::vector<MotionLaw> laws_;
+  std::vector<RigidPose> poses_;
+  std::vector<RigidPlacement> placements_;
+  double t_last_ = 0.0;
+};
+
+}  // namespace swell

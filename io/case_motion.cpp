@@ -1,0 +1,281 @@
+// Parsing of a body's `motion:` key into MotionSpec (bc/motion.hpp).
+//
+//   motion: none
+//   motion: {type: linear, velocity: [..], acceleration: [..]}            m/s, m/s^2
+//   motion: {type: sinusoidal, amplitude: A, period: P, phase: deg, direction: [..]}
+//   motion: {type: rotation, centre: [..], rate: deg/s, axis: [x, y, z]}
+//   motion: {type: rotation, centre: [..], amplitude: deg, period: P, phase: deg, axis: [..]}
+//   motion: {type: file, file: f.csv, quantity: displacement, direction: [..]}
+//   motion: {type: file, file: f.csv, quantity: angle, centre: [..], axis: [..]}
+// Every type also takes start, stop and ramp (seconds). Angles, phases and rates are in degrees
+// in the file and radians in MotionSpec. The axis is always 3 numbers; in 2D it must be z. As in
+// the gauge reader, a key that belongs to another type is reported as such.
+#include "io/case_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <span>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+namespace swell::case_parse {
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+struct MotionTypeInfo {
+  std::string_view name;
+  MotionSpec::Type type;
+  Names keys;  // besides kCommonKeys
+};
+
+const Names kCommonKeys = {"type", "start", "stop", "ramp"};
+
+const std::vector<MotionTypeInfo>& motion_types() {
+  static const std::vector<MotionTypeInfo> types = {
+      {"linear", MotionSpec::Type::Linear, {"velocity", "acceleration"}},
+      {"sinusoidal", MotionSpec::Type::Sinusoidal, {"amplitude", "period", "phase", "direction"}},
+      {"rotation",
+       MotionSpec::Type::Rotation,
+       {"centre", "axis", "rate", "amplitude", "period", "phase"}},
+      {"file", MotionSpec::Type::File, {"file", "quantity", "direction", "centre", "axis"}},
+  };
+  return types;
+}
+
+const char* const kExample = "a map such as {type: sinusoidal, amplitude: 0.05, period: 1.2}";
+
+class MotionReader : private NodeReader {
+ public:
+  MotionReader(const NodeReader& base, std::string case_dir)
+      : NodeReader(base), case_dir_(std::move(case_dir)) {}
+
+  MotionSpec read(const YAML::Node& node, const std::string& path) const;
+
+ private:
+  const MotionTypeInfo& read_type(const YAML::Node& node, const std::string& path) const;
+  void check_motion_keys(const YAML::Node& node, const std::string& path,
+                         const MotionTypeInfo& type) const;
+  void read_times(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
+  void read_linear(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
+  void read_sinusoid(const YAML::Node& node, const std::string& path, MotionSpec& spec,
+                     double amplitude_unit) const;
+  void read_rotation(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
+  void read_file(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
+  void read_pivot(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
+  void read_direction(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
+  Eigen::Vector3d unit(const YAML::Node& node, const std::string& path, int count) const;
+
+  std::string case_dir_;
+};
+
+MotionSpec MotionReader::read(const YAML::Node& node, const std::string& path) const {
+  if (node.IsScalar() && node.Scalar() == "none") return MotionSpec{};
+  expect(node.IsMap(), node, path, std::string("'none' or ") + kExample);
+  MotionSpec spec;
+  const MotionTypeInfo& type = read_type(node, path);
+  spec.type = type.type;
+  check_motion_keys(node, path, type);
+  read_times(node, path, spec);
+  switch (spec.type) {
+    case MotionSpec::Type::None:
+      break;
+    case MotionSpec::Type::Linear:
+      read_linear(node, path, spec);
+      break;
+    case MotionSpec::Type::Sinusoidal:
+      read_sinusoid(node, path, spec, 1.0);
+      read_direction(node, path, spec);
+      break;
+    case MotionSpec::Type::Rotation:
+      read_rotation(node, path, spec);
+      break;
+    case MotionSpec::Type::File:
+      read_file(node, path, spec);
+      break;
+  }
+  try {
+    MotionLaw check(spec);  // a backstop: the checks above should leave nothing to find
+  } catch (const std::invalid_argument& e) {
+    fail(node, path + ": " + e.what());
+  }
+  return spec;
+}
+
+const MotionTypeInfo& MotionReader::read_type(const YAML::Node& node,
+                                              const std::string& path) const {
+  Names names;
+  for (const MotionTypeInfo& info : motion_types()) names.push_back(info.name);
+  const std::string type = choice(require(node, path, "type"), child(path, "type"), names);
+  const auto& types = motion_types();
+  return *std::find_if(types.begin(), types.end(),
+                       [&](const MotionTypeInfo& info) { return info.name == type; });
+}
+
+void MotionReader::check_motion_keys(const YAML::Node& node, const std::string& path,
+                                     const MotionTypeInfo& type) const {
+  Names allowed = kCommonKeys;
+  allowed.insert(allowed.end(), type.keys.begin(), type.keys.end());
+  const std::string context = " for type " + std::string(type.name);
+  for (const auto& entry : node) {
+    if (!entry.first.IsScalar()) continue;  // reported by check_keys below
+    const std::string& key = entry.first.Scalar();
+    if (contains(allowed, key)) continue;
+    Names owners;
+    for (const MotionTypeInfo& other : motion_types()) {
+      if (contains(other.keys, key)) owners.push_back(other.name);
+    }
+    if (owners.empty()) continue;  // an unknown key, reported by check_keys below
+    fail(entry.first, child(path, key) + ": " + std::string(type.name) + " motion takes no '" +
+                          key + "' (it belongs to type" + (owners.size() > 1 ? "s " : " ") +
+                          join(owners) + "); allowed keys in " + path + context + ": " +
+                          join(allowed));
+  }
+  check_keys(node, path, allowed, context);
+}
+
+void MotionReader::read_times(const YAML::Node& node, const std::string& path,
+                              MotionSpec& spec) const {
+  if (auto v = find(node, "start")) {
+    spec.start = number_if(
+        *v, child(path, "start"), [](double s) { return s >= 0.0; },
+        "a number >= 0 (seconds from the start of the run)");
+  }
+  if (auto v = find(node, "stop")) {
+    const double start = spec.start;
+    const auto start_node = find(node, "start");
+    spec.stop = number_if(
+        *v, child(path, "stop"), [start](double s) { return s > start; },
+        "a number > start (" + (start_node ? start_node->Scalar() : std::string("0")) + " s)");
+  }
+  if (auto v = find(node, "ramp")) {
+    spec.ramp = number_if(
+        *v, child(path, "ramp"), [](double r) { return r >= 0.0; },
+        "a number >= 0 (seconds; 0: no ramp)");
+  }
+}
+
+void MotionReader::read_linear(const YAML::Node& node, const std::string& path,
+                               MotionSpec& spec) const {
+  const auto velocity = find(node, "velocity");
+  const auto acceleration = find(node, "acceleration");
+  if (!velocity && !acceleration) {
+    fail(node, path +
+                   ": linear motion needs 'velocity' [m/s] and/or 'acceleration' [m/s^2], "
+                   "e.g. {type: linear, velocity: [0.1, 0]}");
+  }
+  if (velocity) spec.velocity = vector(*velocity, child(path, "velocity"));
+  if (acceleration) spec.acceleration = vector(*acceleration, child(path, "acceleration"));
+}
+
+// amplitude, period, phase; the amplitude is multiplied by `amplitude_unit` (degrees to radians
+// for a rotation).
+void MotionReader::read_sinusoid(const YAML::Node& node, const std::string& path, MotionSpec& spec,
+                                 double amplitude_unit) const {
+  spec.amplitude =
+      amplitude_unit * number(require(node, path, "amplitude"), child(path, "amplitude"));
+  spec.period = number_if(
+      require(node, path, "period"), child(path, "period"), [](double p) { return p > 0.0; },
+      "a number > 0 (seconds)");
+  if (auto v = find(node, "phase")) spec.phase = kDegree * number(*v, child(path, "phase"));
+}
+
+void MotionReader::read_rotation(const YAML::Node& node, const std::string& path,
+                                 MotionSpec& spec) const {
+  read_pivot(node, path, spec);
+  const auto rate = find(node, "rate");
+  const bool sinusoid = find(node, "amplitude") || find(node, "period") || find(node, "phase");
+  if (rate && sinusoid) {
+    fail(*rate, child(path, "rate") + ": a rotation takes either 'rate' (deg/s, a constant " +
+                    "rate) or 'amplitude' (deg) and 'period' (s), not both");
+  }
+  if (rate) {
+    spec.rate = kDegree * number(*rate, child(path, "rate"));
+  } else if (sinusoid) {
+    read_sinusoid(node, path, spec, kDegree);
+  } else {
+    fail(node, path + ": a rotation needs either 'rate' (deg/s) or 'amplitude' (deg) and " +
+                   "'period' (s), e.g. {type: rotation, centre: [0.5, 0.1], rate: 30}");
+  }
+}
+
+void MotionReader::read_file(const YAML::Node& node, const std::string& path,
+                             MotionSpec& spec) const {
+  const std::string quantity =
+      choice(require(node, path, "quantity"), child(path, "quantity"), {"displacement", "angle"});
+  const bool angle = quantity == "angle";
+  spec.quantity = angle ? MotionSpec::Quantity::Angle : MotionSpec::Quantity::Displacement;
+  const std::string_view unused[] = {"direction"};
+  const std::string_view unused_angle[] = {"centre", "axis"};
+  for (const std::string_view key : angle ? std::span<const std::string_view>(unused)
+                                          : std::span<const std::string_view>(unused_angle)) {
+    if (auto v = find(node, key)) {
+      fail(*v, child(path, key) + ": '" + std::string(key) +
+                   "' is only used with quantity: " + (angle ? "displacement" : "angle") +
+                   ", but this file gives quantity: " + quantity);
+    }
+  }
+  if (angle) {
+    read_pivot(node, path, spec);
+  } else {
+    read_direction(node, path, spec);
+  }
+  const YAML::Node file_node = require(node, path, "file");
+  const std::string file = name(file_node, child(path, "file"));
+  std::filesystem::path resolved(file);
+  if (resolved.is_relative() && !case_dir_.empty())
+    resolved = std::filesystem::path(case_dir_) / resolved;
+  spec.file = resolved.string();
+  try {
+    MotionSeries series = load_motion_csv(spec.file, spec.quantity);
+    spec.series_t = std::move(series.t);
+    spec.series_value = std::move(series.value);
+  } catch (const std::invalid_argument& e) {
+    fail(file_node, child(path, "file") + ": " + e.what());
+  }
+}
+
+// centre (required) and axis (optional, always 3 numbers; z in 2D) of a rotation.
+void MotionReader::read_pivot(const YAML::Node& node, const std::string& path,
+                              MotionSpec& spec) const {
+  spec.centre = vector(require(node, path, "centre"), child(path, "centre"));
+  const auto v = find(node, "axis");
+  if (!v) return;
+  const std::string axis_path = child(path, "axis");
+  spec.axis = unit(*v, axis_path, 3);
+  if (dim() == 2 && (spec.axis.x() != 0.0 || spec.axis.y() != 0.0)) {
+    fail(*v, axis_path +
+                 ": a 2D case rotates in the xy plane, about z: expected [0, 0, 1] "
+                 "(or [0, 0, -1], or leave 'axis' out), got " +
+                 describe(*v));
+  }
+}
+
+void MotionReader::read_direction(const YAML::Node& node, const std::string& path,
+                                  MotionSpec& spec) const {
+  if (auto v = find(node, "direction")) spec.direction = unit(*v, child(path, "direction"), dim());
+}
+
+// A list of `count` numbers (z = 0 when count is 2), not all zero, normalised.
+Eigen::Vector3d MotionReader::unit(const YAML::Node& node, const std::string& path,
+                                   int count) const {
+  const std::vector<double> values = numbers(node, path, static_cast<std::size_t>(count));
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (int d = 0; d < count; ++d) v[d] = values[static_cast<std::size_t>(d)];
+  const double length = v.norm();
+  expect(length > 0.0 && std::isfinite(length), node, path, "a non-zero vector");
+  return v / length;
+}
+
+}  // namespace
+
+MotionSpec read_motion(const NodeReader& reader, const YAML::Node& node, const std::string& path,
+                       const std::string& case_dir) {
+  return MotionReader(reader, case_dir).read(node, path);
+}
+
+}  // namespace swell::case_parse

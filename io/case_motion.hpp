@@ -1,0 +1,21 @@
+// Reader of a body's `motion:` key (io/case_motion.cpp). Internal to the case-file reader, like
+// io/case_parse_util.hpp; not a public API.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+#include "bc/motion.hpp"
+#include "io/case_parse_util.hpp"
+
+namespace swell::case_parse {
+
+// Reads `motion: none` or a map such as {type: sinusoidal, amplitude: 0.05, period: 1.2} into a
+// MotionSpec in SI units (degrees in the file become radians). A `file` is taken relative to
+// `case_dir` (unless absolute) and loaded now. `reader` supplies the file label and dimension;
+// `path` is the key path of the motion node ("bodies[1].motion"). Throws CaseError.
+MotionSpec read_motion(const NodeReader& reader, const YAML::Node& node, const std::string& path,
+                       const std::string& case_dir);
+
+}  // namespace swell::case_parse

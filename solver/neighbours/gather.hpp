@@ -1,0 +1,109 @@
+// Neighbour gathering: the one file of the solver with SIMD intrinsics.
+//
+// gather_neighbours() tests a contiguous range of candidate particles against a particle's
+// kernel support and appends the hits to a list whose entries carry the wall flag in their top
+// bit. A selection policy says which b a particle a may see: it is the boundary model's say in
+// the pair loop (bc/dbc uses WallsSeeFluid) and one of the loop's three compile-time switches
+// (kernel, viscosity, selection).
+#pragma once
+
+#include <immintrin.h>
+
+#include <cstdint>
+
+#include "solver/state/types.hpp"
+
+namespace swell {
+
+// Lanes of the pair loop's vectors (8 doubles with AVX-512); neighbour lists are padded to it.
+inline constexpr std::uint32_t kPairLanes = 8;
+// Neighbour-list entries carry the wall flag in their top bit (b | kWallBit for a wall b).
+inline constexpr std::uint32_t kWallBit = 0x80000000u;
+
+// Dynamic boundary conditions (Crespo et al. 2007): a fluid particle sees every particle in
+// reach; a wall particle sees fluid only (wall-wall pairs do nothing) and gets continuity only,
+// no density diffusion. Cells with no fluid within reach are skipped: their walls get zero
+// rates.
+struct WallsSeeFluid {
+  static constexpr bool kWallSeesWalls = false;
+  static constexpr bool kWallsDiffuse = false;
+  static constexpr bool kSkipDryCells = true;
+};
+
+// Appends to nb[k...] the entries of the particles b in [b0, b1) within the kernel support of
+// xa (b != a; which b per the selection policy) and returns the new count. P holds the
+// positions (D doubles a particle), role the roles. nb must have room for (b1 - b0) + 8 more
+// entries past k. The AVX-512 path tests 8 candidates at once and packs the hits with a
+// register compress; the scalar path is the same test.
+template <int D, class Select>
+inline std::uint32_t gather_neighbours(const double* P, const Role* role, const double* xa,
+                                       bool fluid_a, double support2, std::uint32_t b0,
+                                       std::uint32_t b1, std::uint32_t* nb, std::uint32_t k) {
+  std::uint32_t b = b0;
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__)
+  static_assert(D == 2 || D == 3, "the AVX-512 path handles 2D and 3D");
+  const __m512d s2 = _mm512_set1_pd(support2), tiny = _mm512_set1_pd(1e-18),
+                zero = _mm512_setzero_pd();
+  __m512d xav[D];
+  for (int d = 0; d < D; ++d) xav[d] = _mm512_set1_pd(xa[d]);
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i wall_bit = _mm256_set1_epi32(static_cast<int>(kWallBit));
+  const __m128i fluid_role = _mm_set1_epi8(static_cast<char>(Role::Fluid));
+  for (; b < b1; b += 8) {
+    const std::uint32_t left = b1 - b;
+    const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+    // The 8 candidates' coordinates are D x 8 consecutive doubles: load them (masked at the
+    // end of the range) and split them by axis with two-source permutes.
+    const double* p = P + static_cast<std::size_t>(b) * D;
+    const unsigned nd = (left >= 8 ? 8u : left) * D;  // doubles to read
+    auto part = [nd](unsigned from) {
+      return nd >= from + 8 ? __mmask8(0xFF)
+                            : nd > from ? __mmask8((1u << (nd - from)) - 1u) : __mmask8(0);
+    };
+    __m512d xb[D];
+    const __m512d c0 = _mm512_maskz_loadu_pd(part(0), p), c1 = _mm512_maskz_loadu_pd(part(8), p + 8);
+    if constexpr (D == 2) {
+      xb[0] = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14), c1);
+      xb[1] = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15), c1);
+    } else {
+      const __m512d c2 = _mm512_maskz_loadu_pd(part(16), p + 16);
+      const __m512d tx = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0), c1);
+      const __m512d ty = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0), c1);
+      const __m512d tz = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0), c1);
+      xb[0] = _mm512_permutex2var_pd(tx, _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13), c2);
+      xb[1] = _mm512_permutex2var_pd(ty, _mm512_setr_epi64(0, 1, 2, 3, 4, 8, 11, 14), c2);
+      xb[2] = _mm512_permutex2var_pd(tz, _mm512_setr_epi64(0, 1, 2, 3, 4, 9, 12, 15), c2);
+    }
+    __m512d r2 = zero;
+    for (int d = 0; d < D; ++d) {
+      const __m512d dx = _mm512_sub_pd(xav[d], xb[d]);
+      r2 = _mm512_fmadd_pd(dx, dx, r2);
+    }
+    const __m128i kb = _mm_maskz_loadu_epi8(valid, role + b);
+    const __mmask8 fluid_b = static_cast<__mmask8>(_mm_cmpeq_epi8_mask(kb, fluid_role));
+    __mmask8 m = valid & _mm512_cmp_pd_mask(r2, s2, _CMP_LT_OQ) &
+                 _mm512_cmp_pd_mask(r2, tiny, _CMP_GT_OQ);
+    if constexpr (!Select::kWallSeesWalls) {
+      if (!fluid_a) m &= fluid_b;
+    }
+    __m256i idx = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(b)), lane);
+    idx = _mm256_mask_or_epi32(idx, static_cast<__mmask8>(~fluid_b), idx, wall_bit);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(nb + k), _mm256_maskz_compress_epi32(m, idx));
+    k += static_cast<std::uint32_t>(__builtin_popcount(m));
+  }
+#else
+  for (; b < b1; ++b) {
+    double r2 = 0.0;
+    for (int d = 0; d < D; ++d) {
+      const double dx = xa[d] - P[b * D + d];
+      r2 += dx * dx;
+    }
+    const bool fluid_b = role[b] == Role::Fluid;
+    nb[k] = b | (fluid_b ? 0u : kWallBit);
+    k += (r2 < support2) & (r2 > 1e-18) & (Select::kWallSeesWalls | fluid_a | fluid_b);
+  }
+#endif
+  return k;
+}
+
+}  // namespace swell

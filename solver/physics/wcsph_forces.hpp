@@ -1,0 +1,77 @@
+// One force evaluation of the WCSPH equations: the EoS per particle (P/rho^2 and c), then the
+// pair driver with the WCSPH evaluator. The kernel and the viscosity model are chosen here at
+// run time (with_kernel), the selection policy by the caller (the boundary model, bc/): the
+// three compile-time switches of the pair loop.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <type_traits>
+#include <vector>
+
+#include "solver/neighbours/cell_grid.hpp"
+#include "solver/neighbours/pair_driver.hpp"
+#include "solver/physics/eos.hpp"
+#include "solver/physics/kernels.hpp"
+#include "solver/physics/wcsph_evaluator.hpp"
+#include "solver/solver_params.hpp"
+#include "solver/state/particle_set.hpp"
+
+namespace swell {
+
+// Derived per-evaluation values (never checkpointed: recomputed from the state).
+template <int D>
+struct ForceBuffers {
+  std::vector<Vec<D>> ace;
+  std::vector<double> drho;
+  std::vector<double> prs;    // P_a / rho_a^2
+  std::vector<double> cs;     // sound speed c_a
+  std::vector<double> press;  // P_a, filled only on request (Simulation::pressure(), output)
+  double visc_dt_max = 0.0;   // max over pairs of h |v_ab.r_ab| / (r^2 + eta^2), for dt
+  double cs_max = 0.0;
+  NeighbourLists neighbours;
+
+  void resize(std::size_t n) {
+    ace.resize(n);
+    drho.resize(n);
+    prs.resize(n);
+    cs.resize(n);
+  }
+};
+
+// P/rho^2 and c of every active particle, and the largest sound speed (for dt).
+template <int D>
+void compute_pressure(const ParticleSet<D>& ps, const TaitEos& eos, ForceBuffers<D>& out) {
+  const long n = static_cast<long>(ps.size());
+  double rho_max = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : rho_max)
+  for (long i = 0; i < n; ++i) {
+    const double rho = ps.rho[i];
+    out.prs[i] = eos.pressure(rho) / (rho * rho);
+    out.cs[i] = eos.sound_speed(rho);
+    rho_max = std::max(rho_max, rho);
+  }
+  out.cs_max = eos.sound_speed(rho_max);  // c grows with rho
+}
+
+// drho/dt and dv/dt of every active particle at the current state (the grid must be sorted).
+template <int D, class Select>
+void compute_forces(const ParticleSet<D>& ps, const CellGrid<D>& grid, const SolverParams& prm,
+                    const TaitEos& eos, ForceBuffers<D>& f) {
+  compute_pressure(ps, eos, f);
+  with_kernel<D>(prm.kernel, prm.h, [&](const auto& kernel) {
+    using K = std::decay_t<decltype(kernel)>;
+    auto run = [&](auto ev) {
+      f.visc_dt_max = for_each_pair<D, Select>(ps, grid, kernel.support(), ev, f.neighbours);
+    };
+    if (prm.viscosity == ViscosityModel::Artificial)
+      run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select>(
+          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
+    else
+      run(WcsphEvaluator<D, K, ViscosityModel::Laminar, Select>(
+          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
+    return 0;
+  });
+}
+
+}  // namespace swell

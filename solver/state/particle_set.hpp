@@ -1,0 +1,217 @@
+// Particle state as a structure of arrays with ONE field table.
+//
+// Every per-particle array is declared once, in SWELL_PARTICLE_FIELDS below: its name, element
+// type, class (evolved state, integrator memory or constant) and its dataset name in snapshots.
+// Everything that must treat all fields alike iterates the table through for_each_field():
+// add(), reserve(), permute() (the reorder by cell), checkpoints and snapshots (io/hdf5_file),
+// and later halo packing. Adding a field is one line in the table.
+//
+// Active particles occupy [0, size()); excluded particles are moved past the end by
+// CellGrid::sort and stay there (counted, never simulated again). Reordering never allocates
+// once the scratch buffers reached the particle count.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+#include "solver/state/types.hpp"
+
+namespace swell {
+
+// What a field holds: evolved by the integrator, the integrator's memory of the last step, or
+// set once (mass, role, body, id, reference position).
+enum class FieldClass : std::uint8_t { State, Integrator, Constant };
+
+struct FieldInfo {
+  int index;             // position in the table
+  const char* name;      // member name, also the dataset name in checkpoints
+  FieldClass cls;
+  const char* snapshot;  // dataset name in HDF5 snapshots; nullptr: not written there
+  bool optional;         // empty unless enable()d (e.g. pos_ref: only runs with moving bodies)
+};
+
+// The field table. Columns: member, element type, class, snapshot dataset name, optional.
+// Element types must be trivially copyable (they are stored raw in checkpoints).
+#define SWELL_PARTICLE_FIELDS(X)                                                       \
+  X(pos, V, FieldClass::State, "pos", false)                                           \
+  X(vel, V, FieldClass::State, "vel", false)                                           \
+  X(rho, double, FieldClass::State, "rho", false)                                      \
+  /* integrator memory: x^n, v^n, rho^n (symplectic) or v^{n-1}, rho^{n-1} (Verlet) */ \
+  X(pos_prev, V, FieldClass::Integrator, nullptr, false)                               \
+  X(vel_prev, V, FieldClass::Integrator, nullptr, false)                               \
+  X(rho_prev, double, FieldClass::Integrator, nullptr, false)                          \
+  X(mass, double, FieldClass::Constant, "mass", false)                                 \
+  X(role, Role, FieldClass::Constant, "type", false)                                   \
+  X(body, std::uint16_t, FieldClass::Constant, "body", false)                          \
+  X(id, std::uint32_t, FieldClass::Constant, "id", false)                              \
+  /* the body-frame position a moving wall particle's motion law is applied to */      \
+  X(pos_ref, V, FieldClass::Constant, nullptr, true)
+
+template <int D>
+struct ParticleSet {
+  using V = Vec<D>;
+
+#define SWELL_DECLARE_FIELD(NAME, TYPE, CLS, SNAP, OPT) std::vector<TYPE> NAME;
+  SWELL_PARTICLE_FIELDS(SWELL_DECLARE_FIELD)
+#undef SWELL_DECLARE_FIELD
+
+  std::size_t n_active = 0;
+
+  std::size_t size() const { return n_active; }
+  std::size_t total() const { return pos.size(); }
+
+  // Calls fn(const FieldInfo&, array) for every field of the table, in table order, enabled
+  // or not (a disabled optional field is an empty array).
+  template <class Fn>
+  void for_each_field(Fn&& fn) {
+    int index = 0;
+#define SWELL_VISIT_FIELD(NAME, TYPE, CLS, SNAP, OPT) fn(FieldInfo{index++, #NAME, CLS, SNAP, OPT}, NAME);
+    SWELL_PARTICLE_FIELDS(SWELL_VISIT_FIELD)
+  }
+  template <class Fn>
+  void for_each_field(Fn&& fn) const {
+    int index = 0;
+    SWELL_PARTICLE_FIELDS(SWELL_VISIT_FIELD)
+#undef SWELL_VISIT_FIELD
+  }
+  static constexpr int kNumFields = [] {
+    int n = 0;
+#define SWELL_COUNT_FIELD(NAME, TYPE, CLS, SNAP, OPT) ++n;
+    SWELL_PARTICLE_FIELDS(SWELL_COUNT_FIELD)
+#undef SWELL_COUNT_FIELD
+    return n;
+  }();
+
+  // Whether a field is in use (always, unless it is optional and not enabled).
+  bool enabled(const FieldInfo& f) const { return !f.optional || enabled_[f.index]; }
+  // Turns an optional field on for every particle: a copy of `init` (same element type and
+  // size), e.g. enable("pos_ref", pos). Throws for an unknown name or a mismatch.
+  template <class T>
+  void enable(const std::string& name, const std::vector<T>& init) {
+    bool found = false;
+    for_each_field([&](const FieldInfo& f, auto& a) {
+      if (name != f.name) return;
+      found = true;
+      if constexpr (std::is_same_v<std::decay_t<decltype(a)>, std::vector<T>>) {
+        if (init.size() != total())
+          throw std::invalid_argument("ParticleSet::enable: '" + name + "' needs " +
+                                      std::to_string(total()) + " values");
+        a = init;
+        enabled_[f.index] = true;
+      } else {
+        throw std::invalid_argument("ParticleSet::enable: wrong element type for '" + name + "'");
+      }
+    });
+    if (!found) throw std::invalid_argument("ParticleSet::enable: no field '" + name + "'");
+  }
+  // Marks a field enabled whose array was filled from outside (checkpoint reader).
+  void mark_enabled(const FieldInfo& f) { enabled_[f.index] = true; }
+
+  void reserve(std::size_t n) {
+    for_each_field([&](const FieldInfo& f, auto& a) {
+      if (enabled(f)) a.reserve(n);
+    });
+  }
+
+  // Appends one particle: every enabled field gets an entry; the integrator memory starts equal
+  // to the state, the reference position equal to the position.
+  void add(const V& x, const V& v, double density, double m, Role r, std::uint16_t body_id) {
+    const auto next_id = static_cast<std::uint32_t>(pos.size());
+    for_each_field([&](const FieldInfo& f, auto& a) {
+      if (enabled(f)) a.emplace_back();
+    });
+    pos.back() = x;
+    vel.back() = v;
+    rho.back() = density;
+    pos_prev.back() = x;
+    vel_prev.back() = v;
+    rho_prev.back() = density;
+    mass.back() = m;
+    role.back() = r;
+    body.back() = body_id;
+    id.back() = next_id;
+    if (!pos_ref.empty()) pos_ref.back() = x;
+    n_active = pos.size();
+  }
+
+  // new[i] = old[order[i]] for every enabled field (order covers the active range; the
+  // excluded tail keeps its place). Fields are gathered in passes: a pass takes, for each element
+  // type, up to kSlots fields into that type's scratch arrays without barriers between them
+  // (one parallel region), then swaps them in; the arrays left behind are the next pass's
+  // scratch. With today's table that is two passes, as many as the hand-written version had.
+  void permute(const std::vector<std::uint32_t>& order) {
+    const long n = static_cast<long>(order.size());
+    const std::size_t total_n = pos.size();
+    for (int pass = 0;; ++pass) {
+      bool any = false, later = false;
+      visit_pass(pass, [&](auto& a, auto& scratch, int p) {
+        if (p == pass) {
+          scratch.resize(total_n);
+          any = true;
+        }
+        later = later || p > pass;
+      });
+      if (!any) break;
+#pragma omp parallel if (n > kParallelMin)
+      visit_pass(pass, [&](auto& a, auto& scratch, int p) {
+        if (p != pass) return;
+#pragma omp for schedule(static) nowait
+        for (long i = 0; i < n; ++i) scratch[i] = a[order[i]];
+      });
+      visit_pass(pass, [&](auto& a, auto& scratch, int p) {
+        if (p != pass) return;
+        for (std::size_t i = order.size(); i < total_n; ++i) scratch[i] = a[i];
+        a.swap(scratch);
+      });
+      if (!later) break;
+    }
+  }
+
+  // Below this many particles the O(N) loops of the sort run serially: their parallel
+  // region would cost more than the loop.
+  static constexpr long kParallelMin = 8192;
+
+ private:
+  static constexpr int kSlots = 2;
+  template <class T>
+  using Slots = std::array<std::vector<T>, kSlots>;
+  using Scratch = std::tuple<Slots<V>, Slots<double>, Slots<Role>, Slots<std::uint16_t>,
+                             Slots<std::uint32_t>>;
+  template <class T>
+  static constexpr int type_slot() {
+    if constexpr (std::is_same_v<T, V>) return 0;
+    if constexpr (std::is_same_v<T, double>) return 1;
+    if constexpr (std::is_same_v<T, Role>) return 2;
+    if constexpr (std::is_same_v<T, std::uint16_t>) return 3;
+    if constexpr (std::is_same_v<T, std::uint32_t>) return 4;
+    return -1;
+  }
+  // Calls fn(array, its scratch array, its pass) for every enabled field. A field's pass is its
+  // ordinal among the enabled fields of its element type, divided by kSlots.
+  template <class Fn>
+  void visit_pass(int pass, Fn&& fn) {
+    int count[std::tuple_size_v<Scratch>] = {};
+    for_each_field([&](const FieldInfo& f, auto& a) {
+      using T = typename std::decay_t<decltype(a)>::value_type;
+      static_assert(type_slot<T>() >= 0, "add the field's element type to ParticleSet::Scratch");
+      if (!enabled(f)) return;
+      const int ordinal = count[type_slot<T>()]++;
+      const int p = ordinal / kSlots;
+      auto& scratch = std::get<Slots<T>>(scratch_)[ordinal % kSlots];
+      fn(a, scratch, p);
+    });
+    (void)pass;
+  }
+
+  Scratch scratch_;
+  std::array<bool, kNumFields> enabled_{};
+};
+
+}  // namespace swell

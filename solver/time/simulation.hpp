@@ -1,0 +1,96 @@
+// The time loop of one WCSPH run: neighbour sort, forces (the boundary model), time step,
+// integration by role, and the step hooks around them (step_hooks.hpp).
+//
+// Simulation owns the particles, the boundary model, the hooks and every buffer the loop
+// needs; after construction a step allocates nothing. Output and gauges read particles()
+// between steps.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/neighbours/cell_grid.hpp"
+#include "solver/physics/eos.hpp"
+#include "solver/physics/wcsph_forces.hpp"
+#include "solver/solver_params.hpp"
+#include "solver/state/particle_set.hpp"
+#include "solver/time/clock.hpp"
+#include "solver/time/step_hooks.hpp"
+
+namespace swell {
+
+template <int D>
+class Simulation {
+ public:
+  using Hooks = std::vector<std::unique_ptr<StepHook<D>>>;
+
+  // `boundary` runs the force stage (bc/dbc.hpp: make_dbc); `hooks` run at their stages in
+  // the order given. Particles of moving walls must be placed at their t = 0 pose by the caller
+  // (bc/motion's MovingBodies::place_initial) or come from a checkpoint.
+  Simulation(const SolverParams& params, ParticleSet<D> particles,
+             std::unique_ptr<BoundaryModel<D>> boundary, Hooks hooks = {});
+
+  // Advances by one (variable) time step.
+  void step();
+
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  double dt() const { return dt_; }
+  const SolverParams& params() const { return prm_; }
+  const ParticleSet<D>& particles() const { return ps_; }
+  const CellGrid<D>& grid() const { return grid_; }
+  const ExclusionCounts& excluded() const { return excluded_; }
+  const PhaseTimes& phase_times() const { return times_; }
+  std::size_t fluid_count() const;
+
+  // Pressure of every active particle in the current order (recomputed from density).
+  const std::vector<double>& pressure();
+
+  // Force per unit mass exerted by the fluid on each active wall particle (fluid particles:
+  // their acceleration) at the last evaluation. Valid between steps.
+  const std::vector<Vec<D>>& acceleration() const { return f_.ace; }
+
+  // Clock and counters for checkpoints; restore() continues a run from them. The particles
+  // must be given to the constructor in the order they were saved.
+  SimulationClock clock() const {
+    return {time_, steps_, dt_, first_dt_, verlet_counter_, excluded_};
+  }
+  void restore(const SimulationClock& c);
+
+  // The boundary model's and the hooks' checkpoint state, as "hook.<name>.<key>" entries.
+  void save_hooks(std::map<std::string, double>& out) const;
+  void restore_hooks(const std::map<std::string, double>& in);
+
+ private:
+  StepState<D> state(double t) { return {ps_, grid_, f_, prm_, eos_, t, dt_}; }
+  void evaluate();  // sort + before_forces + forces + after_forces at the current positions
+  double choose_dt() const;
+  void step_symplectic();
+  void step_verlet();
+  void sort_particles();
+  // prescribe + finish_density at time t, after an integration substep.
+  void after_substep(double t);
+  template <class Stage>
+  void for_each_hook(Stage&& stage);
+
+  SolverParams prm_;
+  TaitEos eos_;
+  ParticleSet<D> ps_;
+  std::unique_ptr<BoundaryModel<D>> boundary_;
+  Hooks hooks_;
+  CellGrid<D> grid_;
+  ForceBuffers<D> f_;
+  double time_ = 0.0, dt_ = 0.0, first_dt_ = 0.0;
+  long steps_ = 0;
+  int verlet_counter_ = 0;
+  ExclusionCounts excluded_;
+  PhaseTimes times_;
+};
+
+extern template class Simulation<2>;
+extern template class Simulation<3>;
+
+}  // namespace swell
