@@ -168,7 +168,7 @@ BodyLoad<D> body_load(const ParticleSet<D>& ps, const std::vector<Vec<D>>& accel
     throw std::invalid_argument("body_load: acceleration array shorter than the particle set");
   BodyLoad<D> load;
   for (std::size_t a = 0; a < ps.size(); ++a) {
-    if (ps.body[a] != body || ps.role[a] != Role::FixedWall) continue;
+    if (ps.body[a] != body || !is_wall(ps.role[a])) continue;
     const Vec<D> f = ps.mass[a] * acceleration[a];
     Eigen::Vector3d f3 = Eigen::Vector3d::Zero(), r3 = Eigen::Vector3d::Zero();
     f3.template head<D>() = f;

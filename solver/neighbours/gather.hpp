@@ -15,7 +15,10 @@
 
 namespace swell {
 
-// Lanes of the pair loop's vectors (8 doubles with AVX-512); neighbour lists are padded to it.
+// Neighbour lists are padded to a multiple of kPairLanes entries so the evaluator's SIMD loop
+// has no scalar remainder: 8 is the AVX-512 width in doubles (what -march=native builds use
+// here, -fopt-info-vec: "loop vectorized using 64 byte vectors") and a multiple of the AVX2
+// width (4). The packing pass itself writes 8 entries at a time (AVX-512) or one (scalar).
 inline constexpr std::uint32_t kPairLanes = 8;
 // Neighbour-list entries carry the wall flag in their top bit (b | kWallBit for a wall b).
 inline constexpr std::uint32_t kWallBit = 0x80000000u;
