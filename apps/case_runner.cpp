@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -16,8 +15,8 @@
 #include "bc/dbc.hpp"
 #include "bc/moving_bodies.hpp"
 #include "geometry/lattice_fill.hpp"
-#include "geometry/shape_factory.hpp"
 #include "io/case_file.hpp"
+#include "io/case_geometry.hpp"
 
 namespace swell {
 namespace {
@@ -31,45 +30,6 @@ DiffusionModel diffusion_from(const std::string& s) {
   return DiffusionModel::Fourtakas;
 }
 
-// The case's bodies as geometry: shapes built (meshes loaded) and fill_inside resolved.
-std::vector<geometry::BodyGeometry> to_geometry(const CaseSpec& spec,
-                                                std::vector<geometry::MeshReport>* meshes) {
-  const std::string base_dir = std::filesystem::path(spec.file).parent_path().string();
-  std::vector<geometry::BodyGeometry> out;
-  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
-    const BodySpec& b = spec.bodies[i];
-    const std::string key = "bodies[" + std::to_string(i) + "]";
-    geometry::BodyGeometry g;
-    g.name = b.name;
-    g.fluid = b.kind == BodySpec::Kind::Fluid;
-    g.walls_inside = b.walls == BodySpec::Walls::Inside;
-    g.layers = b.layers;
-    g.open = b.open;
-    if (g.fluid && b.fill_below) {
-      g.fill_below = b.fill_below;
-      for (std::size_t c = 0; c < spec.bodies.size(); ++c)
-        if (spec.bodies[c].name == b.fill_inside) g.container = static_cast<int>(c);
-      if (g.container < 0)
-        throw CaseError(spec.file, b.line,
-                        key + ".fill.inside: there is no body named '" + b.fill_inside + "'");
-      const BodySpec& c = spec.bodies[static_cast<std::size_t>(g.container)];
-      if (c.kind != BodySpec::Kind::Boundary || c.walls != BodySpec::Walls::Inside)
-        throw CaseError(spec.file, b.line,
-                        key + ".fill.inside: '" + b.fill_inside +
-                            "' must be a boundary body with walls: inside (a tank)");
-    } else {
-      try {
-        g.shape = geometry::build_shape(b.shape, spec.dim, base_dir, meshes);
-      } catch (const geometry::ShapeError& e) {
-        throw CaseError(spec.file, e.line() > 0 ? e.line() : b.line,
-                        key + ".shape: " + e.message());
-      }
-    }
-    out.push_back(std::move(g));
-  }
-  return out;
-}
-
 }  // namespace
 
 template <int D>
@@ -79,7 +39,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   geometry::FillOptions fo;
   fo.dim = D;
   fo.dp = spec.dp;
-  const std::vector<geometry::BodyGeometry> geo = to_geometry(spec, &s.meshes);
+  const std::vector<geometry::BodyGeometry> geo = case_geometry(spec, &s.meshes);
   std::vector<geometry::FilledBody> filled;
   try {
     filled = geometry::fill_bodies(geo, fo);

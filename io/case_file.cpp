@@ -200,8 +200,8 @@ class CaseReader : private NodeReader {
   BodySpec read_body(const YAML::Node& node, const std::string& path) const;
   void read_wall_options(const YAML::Node& node, const std::string& path, BodySpec& body) const;
   void read_fill(const YAML::Node& node, const std::string& path, BodySpec& body) const;
-  void check_fill_targets(const YAML::Node& node, const std::string& path,
-                          const std::vector<BodySpec>& bodies) const;
+  void resolve_fill_targets(const YAML::Node& node, const std::string& path,
+                            std::vector<BodySpec>& bodies) const;
   std::vector<std::string> read_open_faces(const YAML::Node& node, const std::string& path) const;
 };
 
@@ -381,7 +381,7 @@ std::vector<BodySpec> CaseReader::read_bodies(const YAML::Node& node,
     return b.kind == BodySpec::Kind::Fluid;
   });
   if (!has_fluid) fail(node, path + ": no fluid body; at least one body needs 'kind: fluid'");
-  check_fill_targets(node, path, bodies);
+  resolve_fill_targets(node, path, bodies);
   return bodies;
 }
 
@@ -417,8 +417,8 @@ BodySpec CaseReader::read_body(const YAML::Node& node, const std::string& path) 
   return body;
 }
 
-// `fill: {below: LEVEL, inside: BODY}`; BODY is checked once every body is known
-// (check_fill_targets), since it may come later in the list.
+// `fill: {below: LEVEL, inside: BODY}`; BODY is resolved once every body is known
+// (resolve_fill_targets), since it may come later in the list.
 void CaseReader::read_fill(const YAML::Node& node, const std::string& path, BodySpec& body) const {
   expect(node.IsMap(), node, path, "a map such as {below: 0.3, inside: tank}");
   check_keys(node, path, {"below", "inside"});
@@ -426,9 +426,10 @@ void CaseReader::read_fill(const YAML::Node& node, const std::string& path, Body
   body.fill_inside = name(require(node, path, "inside"), child(path, "inside"));
 }
 
-// Every fill must name a boundary body with `walls: inside` (a tank the water can fill).
-void CaseReader::check_fill_targets(const YAML::Node& node, const std::string& path,
-                                    const std::vector<BodySpec>& bodies) const {
+// Every fill must name a boundary body with `walls: inside` (a tank the water can fill); its
+// index is stored in BodySpec::fill_container, the only place a fill's target is looked up.
+void CaseReader::resolve_fill_targets(const YAML::Node& node, const std::string& path,
+                                      std::vector<BodySpec>& bodies) const {
   Names tanks;
   for (const BodySpec& body : bodies) {
     if (body.kind == BodySpec::Kind::Boundary && body.walls == BodySpec::Walls::Inside) {
@@ -438,7 +439,7 @@ void CaseReader::check_fill_targets(const YAML::Node& node, const std::string& p
   const std::string choices = tanks.empty() ? "the case has no boundary body with walls: inside"
                                             : "boundary bodies with walls: inside: " + join(tanks);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const BodySpec& body = bodies[i];
+    BodySpec& body = bodies[i];
     if (!body.fill_below) continue;
     const auto target = std::find_if(bodies.begin(), bodies.end(),
                                      [&](const BodySpec& b) { return b.name == body.fill_inside; });
@@ -452,6 +453,7 @@ void CaseReader::check_fill_targets(const YAML::Node& node, const std::string& p
       problem = "body '" + target->name + "' (line " + std::to_string(target->line) +
                 ") has walls: outside (a solid structure)";
     } else {
+      body.fill_container = static_cast<int>(target - bodies.begin());
       continue;
     }
     const std::string inside_path = child(child(item(path, i), "fill"), "inside");

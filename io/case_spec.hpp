@@ -23,6 +23,10 @@ struct BodySpec {
   ShapeSpec shape;
   std::optional<double> fill_below;
   std::string fill_inside;
+  // The index of body `fill_inside` in CaseSpec::bodies, set (and checked to be a boundary body
+  // with walls: inside) by the case-file reader; -1 without a fill. Code that inserts or
+  // removes bodies of a parsed spec must keep it true.
+  int fill_container = -1;
   // Boundary bodies: which side of the surface the wall particles go on.
   //   inside  - the fluid is inside the shape (a tank); particles fill `layers` outside it,
   //   outside - the fluid is outside the shape (a structure); particles fill `layers` inside it.

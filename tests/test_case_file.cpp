@@ -795,8 +795,10 @@ TEST(CaseFileShapes, ParsesFillInsideATank) {
   ASSERT_TRUE(water.fill_below.has_value());
   EXPECT_DOUBLE_EQ(*water.fill_below, 0.3);
   EXPECT_EQ(water.fill_inside, "tank");
+  EXPECT_EQ(water.fill_container, 1);  // resolved at parse time, though the tank comes later
   EXPECT_EQ(water.line, 5);
   EXPECT_FALSE(spec.bodies[1].fill_below.has_value());
+  EXPECT_EQ(spec.bodies[1].fill_container, -1);
 }
 
 TEST(CaseFileShapeErrors, UnknownOrAmbiguousShape) {
