@@ -1,5 +1,5 @@
 // The parsed, validated content of a case file. Plain data: io/case_file.cpp fills it from
-// YAML, apps/ turns it into particles (geometry/) and solver parameters (solver/).
+// YAML, io/case_setup turns it into particles (geometry/) and solver parameters (solver/).
 #pragma once
 
 #include <Eigen/Core>

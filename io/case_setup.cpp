@@ -1,16 +1,11 @@
-#include "apps/case_runner.hpp"
-
-#include <omp.h>
-#include <unistd.h>
+// From a parsed case to particles, parameters and the simulation (io/case_setup.hpp).
+#include "io/case_setup.hpp"
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <iomanip>
-#include <iostream>
-#include <sstream>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "bc/dbc.hpp"
 #include "bc/moving_bodies.hpp"
