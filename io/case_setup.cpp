@@ -14,19 +14,6 @@
 #include "io/case_geometry.hpp"
 
 namespace swell {
-namespace {
-
-ViscosityModel viscosity_from(const std::string& s) {
-  return s == "laminar" ? ViscosityModel::Laminar : ViscosityModel::Artificial;
-}
-DiffusionModel diffusion_from(const std::string& s) {
-  if (s == "none") return DiffusionModel::None;
-  if (s == "molteni") return DiffusionModel::MolteniColagrossi;
-  return DiffusionModel::Fourtakas;
-}
-
-}  // namespace
-
 template <int D>
 CaseSetup<D> setup_case(const CaseSpec& spec) {
   CaseSetup<D> s;
@@ -46,16 +33,16 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   SolverParams& p = s.params;
   p.dp = spec.dp;
   p.h = spec.coefh * std::sqrt(static_cast<double>(D)) * spec.dp;
-  p.kernel = kernel_from_name(spec.kernel);
+  p.kernel = spec.kernel;
   p.rho0 = spec.rho0;
   p.gravity = spec.gravity;
   if (D == 2) p.gravity.z() = 0.0;
-  p.viscosity = viscosity_from(spec.viscosity_model);
+  p.viscosity = spec.viscosity_model;
   p.alpha = spec.alpha;
   p.nu = spec.nu;
-  p.diffusion = diffusion_from(spec.diffusion_model);
+  p.diffusion = spec.diffusion_model;
   p.delta = spec.delta;
-  p.integrator = spec.integrator == "verlet" ? IntegratorType::Verlet : IntegratorType::Symplectic;
+  p.integrator = spec.integrator;
   p.verlet_steps = spec.verlet_steps;
   p.cfl = spec.cfl;
   p.rho_min_factor = spec.rho_min_factor;
