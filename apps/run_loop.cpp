@@ -22,6 +22,7 @@
 #include "io/model_names.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
+#include "swell/version.hpp"
 
 namespace swell {
 namespace {
@@ -56,7 +57,7 @@ RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const
   m.case_name = spec.name;
   m.case_file = spec.file;
   m.case_text = spec.text;
-  m.version = "0.1.0";
+  m.version = SWELL_VERSION;
   m.dim = D;
   m.dp = spec.dp;
   m.h = setup.params.h;
