@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_single.hpp"  // `swell bench --single`
+
 namespace swell {
 
 struct BenchOptions {
@@ -23,18 +25,6 @@ struct BenchOptions {
   std::string bench_dir;  // folder holding cases/*.yaml (default: found from the executable)
 };
 
-// A single measurement (the child process): the case file at dp (0: the file's), to its end
-// time (or `end`), or `steps` steps after `warmup` steps. Prints one `bench-result` line.
-struct BenchSingleOptions {
-  std::string case_file;
-  double dp = 0.0;
-  double end = 0.0;
-  long steps = 0;
-  long warmup = 0;
-  int threads = 0;
-};
-
 int run_bench(const BenchOptions& opt, std::ostream& log);
-int run_bench_single(const BenchSingleOptions& opt, std::ostream& out);
 
 }  // namespace swell

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "apps/case_runner.hpp"
+#include "io/case_setup.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/physics/eos.hpp"
 

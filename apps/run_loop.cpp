@@ -19,8 +19,10 @@
 #include "apps/gauge_set.hpp"
 #include "io/gauge_csv.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/model_names.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
+#include "swell/version.hpp"
 
 namespace swell {
 namespace {
@@ -55,13 +57,13 @@ RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const
   m.case_name = spec.name;
   m.case_file = spec.file;
   m.case_text = spec.text;
-  m.version = "0.1.0";
+  m.version = SWELL_VERSION;
   m.dim = D;
   m.dp = spec.dp;
   m.h = setup.params.h;
   m.c0 = setup.params.c0;
   m.rho0 = setup.params.rho0;
-  m.kernel = spec.kernel;
+  m.kernel = kernel_name(setup.params.kernel);
   m.n_fluid = sum.fluid;
   m.n_boundary = sum.boundary;
   for (const auto& b : setup.bodies) m.body_names.push_back(b.name);

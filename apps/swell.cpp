@@ -16,6 +16,7 @@
 #include "apps/validate_command.hpp"
 #include "io/case_file.hpp"
 #include "solver/time/simulation.hpp"
+#include "swell/version.hpp"
 #include "validation/validation_manifest.hpp"
 
 namespace {
@@ -29,7 +30,7 @@ constexpr int kExitOther = 1;
 int main(int argc, char** argv) {
   CLI::App app{"Swell: weakly-compressible SPH for coastal and hydraulic engineering"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("swell ") + "0.1.0");
+  app.set_version_flag("--version", std::string("swell ") + SWELL_VERSION);
 
   std::string case_path, out_dir;
   int threads = 0;

@@ -462,7 +462,7 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
     const ManifestTarget* t;
     std::string run;
     double value;
-    bool pass;
+    bool pass, known;
   };
   std::vector<TargetResult> target_results;
   for (const auto& t : m.targets) {
@@ -472,12 +472,20 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
         continue;
       const double v = row_value(row, t.metric);
       const bool pass = target_met(t, v);
-      target_results.push_back({&t, row.run, v, pass});
+      const bool known = std::find(t.known_failures.begin(), t.known_failures.end(), row.run) !=
+                         t.known_failures.end();
+      target_results.push_back({&t, row.run, v, pass, known});
       (pass ? sum.targets_pass : sum.targets_fail)++;
+      const std::string what = t.text + ": " + row.run + " " + t.metric + " = " + format_number(v);
+      if (!pass && known) sum.targets_known_fail++;
+      if (!pass && !known)
+        sum.unexpected_failures.push_back(what + " (bound " + bound_text(t) + ")");
+      if (pass && known)
+        sum.stale_known_failures.push_back(what + " meets it but is listed in known_failures");
       any = true;
     }
     if (!any) {
-      target_results.push_back({&t, "", std::numeric_limits<double>::quiet_NaN(), false});
+      target_results.push_back({&t, "", std::numeric_limits<double>::quiet_NaN(), false, false});
       sum.targets_missing++;
     }
   }
@@ -514,7 +522,9 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
       md << "| " << tr.t->text << " | " << tr.t->gauge << " | " << tr.t->against << " | "
          << (tr.run.empty() ? "–" : tr.run) << " | " << tr.t->metric << " | "
          << format_number(tr.value) << " | " << bound_text(*tr.t) << " | "
-         << (tr.run.empty() ? "no result" : (tr.pass ? "pass" : "**fail**")) << " |\n";
+         << (tr.run.empty() ? "no result"
+                            : (tr.pass ? "pass" : (tr.known ? "**fail** (known)" : "**fail**")))
+         << " |\n";
     }
     md << "\n";
   }
@@ -539,8 +549,9 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
   sum.report = (fs::path(out) / "report.md").string();
   write_text(sum.report, md.str());
   log << "validate " << m.name << ": " << runs.size() << " runs, " << rows.size()
-      << " comparisons; targets: " << sum.targets_pass << " pass, " << sum.targets_fail << " fail, "
-      << sum.targets_missing << " without result -> " << sum.report << "\n";
+      << " comparisons; targets: " << sum.targets_pass << " pass, " << sum.targets_fail << " fail ("
+      << sum.targets_known_fail << " known), " << sum.targets_missing << " without result -> "
+      << sum.report << "\n";
   return sum;
 }
 

@@ -4,7 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "apps/bench_command.hpp"
+#include "bench/bench_single.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"swell_bench_run: one timed run of a benchmark case (used by `swell bench`)"};

@@ -10,6 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +23,7 @@
 
 #include "io/case_motion.hpp"
 #include "io/case_parse_util.hpp"
+#include "io/model_names.hpp"
 
 namespace swell {
 
@@ -200,9 +202,21 @@ class CaseReader : private NodeReader {
   BodySpec read_body(const YAML::Node& node, const std::string& path) const;
   void read_wall_options(const YAML::Node& node, const std::string& path, BodySpec& body) const;
   void read_fill(const YAML::Node& node, const std::string& path, BodySpec& body) const;
-  void check_fill_targets(const YAML::Node& node, const std::string& path,
-                          const std::vector<BodySpec>& bodies) const;
+  void resolve_fill_targets(const YAML::Node& node, const std::string& path,
+                            std::vector<BodySpec>& bodies) const;
   std::vector<std::string> read_open_faces(const YAML::Node& node, const std::string& path) const;
+
+  // One of `values` given by its name (`name_of`, io/model_names.hpp); fails listing the names.
+  template <class Enum, std::size_t N>
+  Enum model(const YAML::Node& node, const std::string& path, const std::array<Enum, N>& values,
+             const char* (*name_of)(Enum)) const {
+    Names names;
+    for (const Enum v : values) names.push_back(name_of(v));
+    const std::string chosen = choice(node, path, names);
+    for (const Enum v : values)
+      if (chosen == name_of(v)) return v;
+    return values[0];  // not reached: choice() accepts only the names of `values`
+  }
 };
 
 CaseSpec CaseReader::read(const YAML::Node& root) {
@@ -252,7 +266,7 @@ void CaseReader::read_physics(const YAML::Node& node, const std::string& path,
     spec.hswl = number_if(*v, child(path, "hswl"), positive, "a number > 0");
   }
   if (auto v = find(node, "kernel")) {
-    spec.kernel = choice(*v, child(path, "kernel"), {"wendland", "cubic", "quintic", "gaussian"});
+    spec.kernel = model(*v, child(path, "kernel"), kKernelTypes, kernel_name);
   }
   if (auto v = find(node, "viscosity")) read_viscosity(*v, child(path, "viscosity"), spec);
   if (auto v = find(node, "density_diffusion")) {
@@ -268,10 +282,10 @@ void CaseReader::read_viscosity(const YAML::Node& node, const std::string& path,
                                 CaseSpec& spec) const {
   expect(node.IsMap(), node, path, "a map such as {model: artificial, alpha: 0.01}");
   if (auto v = find(node, "model")) {
-    spec.viscosity_model = choice(*v, child(path, "model"), {"artificial", "laminar"});
+    spec.viscosity_model = model(*v, child(path, "model"), kViscosityModels, viscosity_name);
   }
   const auto non_negative = [](double v) { return v >= 0.0; };
-  if (spec.viscosity_model == "artificial") {
+  if (spec.viscosity_model == ViscosityModel::Artificial) {
     check_keys(node, path, {"model", "alpha"}, " for model artificial");
     if (auto v = find(node, "alpha")) {
       spec.alpha = number_if(*v, child(path, "alpha"), non_negative, "a number >= 0");
@@ -288,13 +302,14 @@ void CaseReader::read_diffusion(const YAML::Node& node, const std::string& path,
                                 CaseSpec& spec) const {
   expect(node.IsMap(), node, path, "a map such as {model: fourtakas, delta: 0.1}");
   if (auto v = find(node, "model")) {
-    spec.diffusion_model = choice(*v, child(path, "model"), {"fourtakas", "molteni", "none"});
+    spec.diffusion_model = model(*v, child(path, "model"), kDiffusionModels, diffusion_name);
   }
-  if (spec.diffusion_model == "none") {
+  if (spec.diffusion_model == DiffusionModel::None) {
     check_keys(node, path, {"model"}, " for model none");
     return;
   }
-  check_keys(node, path, {"model", "delta"}, " for model " + spec.diffusion_model);
+  check_keys(node, path, {"model", "delta"},
+             " for model " + std::string(diffusion_name(spec.diffusion_model)));
   if (auto v = find(node, "delta")) {
     spec.delta = number_if(
         *v, child(path, "delta"), [](double d) { return d >= 0.0; }, "a number >= 0");
@@ -320,7 +335,7 @@ void CaseReader::read_time(const YAML::Node& node, const std::string& path, Case
         *v, child(path, "cfl"), [](double c) { return c > 0.0 && c <= 1.0; }, "a number in (0, 1]");
   }
   if (auto v = find(node, "integrator")) {
-    spec.integrator = choice(*v, child(path, "integrator"), {"symplectic", "verlet"});
+    spec.integrator = model(*v, child(path, "integrator"), kIntegratorTypes, integrator_name);
   }
   if (auto v = find(node, "verlet_steps")) {
     spec.verlet_steps = integer(*v, child(path, "verlet_steps"));
@@ -381,7 +396,7 @@ std::vector<BodySpec> CaseReader::read_bodies(const YAML::Node& node,
     return b.kind == BodySpec::Kind::Fluid;
   });
   if (!has_fluid) fail(node, path + ": no fluid body; at least one body needs 'kind: fluid'");
-  check_fill_targets(node, path, bodies);
+  resolve_fill_targets(node, path, bodies);
   return bodies;
 }
 
@@ -417,8 +432,8 @@ BodySpec CaseReader::read_body(const YAML::Node& node, const std::string& path) 
   return body;
 }
 
-// `fill: {below: LEVEL, inside: BODY}`; BODY is checked once every body is known
-// (check_fill_targets), since it may come later in the list.
+// `fill: {below: LEVEL, inside: BODY}`; BODY is resolved once every body is known
+// (resolve_fill_targets), since it may come later in the list.
 void CaseReader::read_fill(const YAML::Node& node, const std::string& path, BodySpec& body) const {
   expect(node.IsMap(), node, path, "a map such as {below: 0.3, inside: tank}");
   check_keys(node, path, {"below", "inside"});
@@ -426,9 +441,10 @@ void CaseReader::read_fill(const YAML::Node& node, const std::string& path, Body
   body.fill_inside = name(require(node, path, "inside"), child(path, "inside"));
 }
 
-// Every fill must name a boundary body with `walls: inside` (a tank the water can fill).
-void CaseReader::check_fill_targets(const YAML::Node& node, const std::string& path,
-                                    const std::vector<BodySpec>& bodies) const {
+// Every fill must name a boundary body with `walls: inside` (a tank the water can fill); its
+// index is stored in BodySpec::fill_container, the only place a fill's target is looked up.
+void CaseReader::resolve_fill_targets(const YAML::Node& node, const std::string& path,
+                                      std::vector<BodySpec>& bodies) const {
   Names tanks;
   for (const BodySpec& body : bodies) {
     if (body.kind == BodySpec::Kind::Boundary && body.walls == BodySpec::Walls::Inside) {
@@ -438,7 +454,7 @@ void CaseReader::check_fill_targets(const YAML::Node& node, const std::string& p
   const std::string choices = tanks.empty() ? "the case has no boundary body with walls: inside"
                                             : "boundary bodies with walls: inside: " + join(tanks);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const BodySpec& body = bodies[i];
+    BodySpec& body = bodies[i];
     if (!body.fill_below) continue;
     const auto target = std::find_if(bodies.begin(), bodies.end(),
                                      [&](const BodySpec& b) { return b.name == body.fill_inside; });
@@ -452,6 +468,7 @@ void CaseReader::check_fill_targets(const YAML::Node& node, const std::string& p
       problem = "body '" + target->name + "' (line " + std::to_string(target->line) +
                 ") has walls: outside (a solid structure)";
     } else {
+      body.fill_container = static_cast<int>(target - bodies.begin());
       continue;
     }
     const std::string inside_path = child(child(item(path, i), "fill"), "inside");

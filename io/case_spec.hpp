@@ -1,5 +1,5 @@
 // The parsed, validated content of a case file. Plain data: io/case_file.cpp fills it from
-// YAML, apps/ turns it into particles (geometry/) and solver parameters (solver/).
+// YAML, io/case_setup turns it into particles (geometry/) and solver parameters (solver/).
 #pragma once
 
 #include <Eigen/Core>
@@ -9,6 +9,8 @@
 
 #include "bc/motion.hpp"
 #include "geometry/shape_spec.hpp"
+#include "solver/physics/kernels.hpp"
+#include "solver/solver_params.hpp"
 
 namespace swell {
 
@@ -23,6 +25,10 @@ struct BodySpec {
   ShapeSpec shape;
   std::optional<double> fill_below;
   std::string fill_inside;
+  // The index of body `fill_inside` in CaseSpec::bodies, set (and checked to be a boundary body
+  // with walls: inside) by the case-file reader; -1 without a fill. Code that inserts or
+  // removes bodies of a parsed spec must keep it true.
+  int fill_container = -1;
   // Boundary bodies: which side of the surface the wall particles go on.
   //   inside  - the fluid is inside the shape (a tank); particles fill `layers` outside it,
   //   outside - the fluid is outside the shape (a structure); particles fill `layers` inside it.
@@ -85,18 +91,19 @@ struct CaseSpec {
   double coefsound = 20.0;
   double coefh = 1.0;
   std::optional<double> hswl;       // still-water height for c0; default: from the fluid particles
-  std::string kernel = "wendland";  // wendland | cubic | quintic | gaussian
-  std::string viscosity_model = "artificial";  // artificial | laminar
-  double alpha = 0.01;                         // artificial viscosity coefficient
-  double nu = 1.0e-6;                          // kinematic viscosity, laminar model [m^2/s]
-  std::string diffusion_model = "fourtakas";   // fourtakas | molteni | none
+  // Models: the solver's enums, read from their names (io/model_names.hpp) by the reader.
+  KernelType kernel = KernelType::Wendland;  // wendland | cubic | quintic | gaussian
+  ViscosityModel viscosity_model = ViscosityModel::Artificial;  // artificial | laminar
+  double alpha = 0.01;  // artificial viscosity coefficient
+  double nu = 1.0e-6;   // kinematic viscosity, laminar model [m^2/s]
+  DiffusionModel diffusion_model = DiffusionModel::Fourtakas;  // fourtakas | molteni | none
   double delta = 0.1;
   double rho_min_factor = 0.7, rho_max_factor = 1.3;  // fluid density bounds before exclusion
 
   // time
   double t_end = 0.0;
   double cfl = 0.2;
-  std::string integrator = "symplectic";  // symplectic | verlet
+  IntegratorType integrator = IntegratorType::Symplectic;  // symplectic | verlet
   int verlet_steps = 40;
 
   // domain: particles leaving it are excluded. Default: boundary bounding box + margin.

@@ -31,11 +31,12 @@
 
 #include "solver/state/particle_set.hpp"
 #include "solver/time/clock.hpp"
+#include "swell/version.hpp"
 
 namespace swell {
 
 struct RunMetadata {
-  std::string case_name, case_file, case_text, version = "0.1.0";
+  std::string case_name, case_file, case_text, version = SWELL_VERSION;
   int dim = 2;
   double dp = 0, h = 0, c0 = 0, rho0 = 0;
   std::string kernel;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/case_file.hpp"
+#include "io/model_names.hpp"
 
 namespace swell {
 namespace {
@@ -84,16 +85,16 @@ output: {every: 0.01, vtk: false, vtk_split: true, hdf5: false, checkpoint_every
   EXPECT_DOUBLE_EQ(spec.coefh, 1.0);
   ASSERT_TRUE(spec.hswl.has_value());
   EXPECT_DOUBLE_EQ(*spec.hswl, 0.3);
-  EXPECT_EQ(spec.kernel, "cubic");
-  EXPECT_EQ(spec.viscosity_model, "laminar");
+  EXPECT_EQ(spec.kernel, KernelType::Cubic);
+  EXPECT_EQ(spec.viscosity_model, ViscosityModel::Laminar);
   EXPECT_DOUBLE_EQ(spec.nu, 1e-6);
-  EXPECT_EQ(spec.diffusion_model, "molteni");
+  EXPECT_EQ(spec.diffusion_model, DiffusionModel::MolteniColagrossi);
   EXPECT_DOUBLE_EQ(spec.delta, 0.05);
   EXPECT_DOUBLE_EQ(spec.rho_min_factor, 0.8);
   EXPECT_DOUBLE_EQ(spec.rho_max_factor, 1.2);
   EXPECT_DOUBLE_EQ(spec.t_end, 0.5);
   EXPECT_DOUBLE_EQ(spec.cfl, 0.25);
-  EXPECT_EQ(spec.integrator, "verlet");
+  EXPECT_EQ(spec.integrator, IntegratorType::Verlet);
   EXPECT_EQ(spec.verlet_steps, 30);
   ASSERT_TRUE(spec.domain_min && spec.domain_max);
   EXPECT_EQ(*spec.domain_min, Eigen::Vector3d(-0.1, -0.1, 0.0));
@@ -146,16 +147,16 @@ bodies:
   EXPECT_DOUBLE_EQ(spec.coefsound, defaults.coefsound);
   EXPECT_DOUBLE_EQ(spec.coefh, defaults.coefh);
   EXPECT_FALSE(spec.hswl.has_value());
-  EXPECT_EQ(spec.kernel, "wendland");
-  EXPECT_EQ(spec.viscosity_model, "artificial");
+  EXPECT_EQ(spec.kernel, KernelType::Wendland);
+  EXPECT_EQ(spec.viscosity_model, ViscosityModel::Artificial);
   EXPECT_DOUBLE_EQ(spec.alpha, defaults.alpha);
-  EXPECT_EQ(spec.diffusion_model, "fourtakas");
+  EXPECT_EQ(spec.diffusion_model, DiffusionModel::Fourtakas);
   EXPECT_DOUBLE_EQ(spec.delta, defaults.delta);
   EXPECT_DOUBLE_EQ(spec.rho_min_factor, defaults.rho_min_factor);
   EXPECT_DOUBLE_EQ(spec.rho_max_factor, defaults.rho_max_factor);
   EXPECT_DOUBLE_EQ(spec.t_end, 2.0);
   EXPECT_DOUBLE_EQ(spec.cfl, defaults.cfl);
-  EXPECT_EQ(spec.integrator, "symplectic");
+  EXPECT_EQ(spec.integrator, IntegratorType::Symplectic);
   EXPECT_EQ(spec.verlet_steps, defaults.verlet_steps);
   EXPECT_FALSE(spec.domain_min.has_value());
   EXPECT_FALSE(spec.domain_max.has_value());
@@ -190,11 +191,35 @@ bodies:
 )";
   const CaseSpec spec = parse_case_text(text, kLabel);
   EXPECT_EQ(spec.gravity, Eigen::Vector3d(1.0, -5.0, 0.0));
-  EXPECT_EQ(spec.viscosity_model, "artificial");
+  EXPECT_EQ(spec.viscosity_model, ViscosityModel::Artificial);
   EXPECT_DOUBLE_EQ(spec.alpha, 0.05);
-  EXPECT_EQ(spec.diffusion_model, "none");
+  EXPECT_EQ(spec.diffusion_model, DiffusionModel::None);
   EXPECT_DOUBLE_EQ(spec.cfl, 1.0);
   EXPECT_EQ(spec.name, "test");
+}
+
+// Every model name the reader accepts is the name function's, and reads back as its enum.
+TEST(CaseFile, ModelNamesReadBackAsTheirEnums) {
+  const auto parse = [](const std::string& physics, const std::string& time) {
+    return parse_case_text("dim: 2\ndp: 0.01\nphysics: " + physics + "\ntime: {end: 1" + time +
+                               "}\nbodies:\n  - {name: water, kind: fluid, shape: {box: "
+                               "{min: [0, 0], max: [1, 1]}}}\n",
+                           kLabel);
+  };
+  for (const KernelType k : kKernelTypes) {
+    EXPECT_EQ(parse("{kernel: " + std::string(kernel_name(k)) + "}", "").kernel, k);
+    EXPECT_EQ(kernel_from_name(kernel_name(k)), k);  // the solver's reader of the HDF5 name
+  }
+  for (const ViscosityModel m : kViscosityModels) {
+    const std::string text = "{viscosity: {model: " + std::string(viscosity_name(m)) + "}}";
+    EXPECT_EQ(parse(text, "").viscosity_model, m);
+  }
+  for (const DiffusionModel m : kDiffusionModels) {
+    const std::string text = "{density_diffusion: {model: " + std::string(diffusion_name(m)) + "}}";
+    EXPECT_EQ(parse(text, "").diffusion_model, m);
+  }
+  for (const IntegratorType t : kIntegratorTypes)
+    EXPECT_EQ(parse("{}", ", integrator: " + std::string(integrator_name(t))).integrator, t);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -795,8 +820,10 @@ TEST(CaseFileShapes, ParsesFillInsideATank) {
   ASSERT_TRUE(water.fill_below.has_value());
   EXPECT_DOUBLE_EQ(*water.fill_below, 0.3);
   EXPECT_EQ(water.fill_inside, "tank");
+  EXPECT_EQ(water.fill_container, 1);  // resolved at parse time, though the tank comes later
   EXPECT_EQ(water.line, 5);
   EXPECT_FALSE(spec.bodies[1].fill_below.has_value());
+  EXPECT_EQ(spec.bodies[1].fill_container, -1);
 }
 
 TEST(CaseFileShapeErrors, UnknownOrAmbiguousShape) {

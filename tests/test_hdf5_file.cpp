@@ -14,6 +14,7 @@
 #include <random>
 
 #include "io/hdf5_file.hpp"
+#include "swell/version.hpp"
 
 namespace swell {
 namespace {
@@ -221,7 +222,7 @@ TEST_F(Hdf5Test, MetadataRoundTrip) {
   EXPECT_EQ(r.case_name, m.case_name);
   EXPECT_EQ(r.case_file, m.case_file);
   EXPECT_EQ(r.case_text, m.case_text);
-  EXPECT_EQ(r.version, "0.1.0");
+  EXPECT_EQ(r.version, SWELL_VERSION);  // swell/version.hpp, from CMakeLists.txt
   EXPECT_EQ(r.dim, 3);
   EXPECT_EQ(r.dp, m.dp);
   EXPECT_EQ(r.h, m.h);

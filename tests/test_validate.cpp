@@ -108,8 +108,10 @@ TEST(Validate, CompareWritesMetricsAndReport) {
   EXPECT_THROW(run_compare(none, log), std::invalid_argument);
 }
 
-// A self-contained validation folder: case file, reference, committed results.
-fs::path make_validation(const fs::path& root, const std::string& manifest_extra = "") {
+// A self-contained validation folder: case file, reference, committed results. `t1_extra` is
+// added to the first target's map.
+fs::path make_validation(const fs::path& root, const std::string& manifest_extra = "",
+                         const std::string& t1_extra = "") {
   write(root / "cases" / "tiny.yaml",
         "name: tiny\ndim: 2\ndp: 0.01\ntime: {end: 0.1}\nbodies:\n"
         "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1, 1]}}}\n"
@@ -129,10 +131,12 @@ fs::path make_validation(const fs::path& root, const std::string& manifest_extra
         "gauges:\n  - {gauge: front, normalisation: front, reference: {experiment: x_front},\n"
         "     window: [0.2, 1.8], relative: true}\n"
         "targets:\n"
-        "  - {gauge: front, against: experiment, metric: max_rel_error, max: 0.05, text: t1}\n"
-        "  - {gauge: front, against: openfoam, metric: max_rel_error, max: 0.05, runs: sph,\n"
-        "     text: t2}\n"
-        "runs:\n  sph: {resolutions: [0.01]}\n  openfoam: {cell_sizes: [0.01, 0.005]}\n" +
+        "  - {gauge: front, against: experiment, metric: max_rel_error, max: 0.05, text: t1" +
+            t1_extra +
+            "}\n"
+            "  - {gauge: front, against: openfoam, metric: max_rel_error, max: 0.05, runs: sph,\n"
+            "     text: t2}\n"
+            "runs:\n  sph: {resolutions: [0.01]}\n  openfoam: {cell_sizes: [0.01, 0.005]}\n" +
             manifest_extra);
   return root / "validation" / "tiny";
 }
@@ -160,6 +164,47 @@ TEST(Validate, CommittedResultsWithoutOpenFoam) {
   EXPECT_NE(report.find("| foam_dx0.01 | interFoam | 0.01 | 10000 |"), std::string::npos);
   EXPECT_NE(report.find("**fail**"), std::string::npos);
   EXPECT_TRUE(fs::exists(root / "out" / "metrics.csv"));
+  // No target lists known failures: both misses are unexpected.
+  EXPECT_EQ(s.targets_known_fail, 0);
+  EXPECT_EQ(s.unexpected_failures.size(), 2u);
+  EXPECT_TRUE(s.stale_known_failures.empty());
+}
+
+TEST(Validate, KnownFailuresAreReportedApart) {
+  const fs::path root = scratch("known");
+  make_validation(root, "", ", known_failures: [foam_dx0.01]");
+  ValidateOptions opt;
+  opt.name = "tiny";
+  opt.search_root = root.string();
+  opt.out_dir = (root / "out").string();
+  std::ostringstream log;
+  ValidateSummary s = run_validate(opt, log);
+  EXPECT_EQ(s.targets_fail, 2);
+  EXPECT_EQ(s.targets_known_fail, 1);           // t1, foam_dx0.01
+  ASSERT_EQ(s.unexpected_failures.size(), 1u);  // t2, sph_dp0.01 against openfoam
+  EXPECT_EQ(s.unexpected_failures[0].rfind("t2: sph_dp0.01 max_rel_error = ", 0), 0u)
+      << s.unexpected_failures[0];
+  EXPECT_TRUE(s.stale_known_failures.empty());
+  EXPECT_NE(read(root / "out" / "report.md").find("**fail** (known)"), std::string::npos);
+
+  // A listed result that meets the target: the list is out of date.
+  make_validation(root, "", ", known_failures: [foam_dx0.01, sph_dp0.01]");
+  s = run_validate(opt, log);
+  ASSERT_EQ(s.stale_known_failures.size(), 1u);
+  EXPECT_EQ(s.stale_known_failures[0].rfind("t1: sph_dp0.01 ", 0), 0u) << s.stale_known_failures[0];
+
+  // A label that is no result of the runs section is a manifest error.
+  const fs::path dir = make_validation(root, "", ", known_failures: [sph_dp0.02]");
+  try {
+    load_manifest((dir / "validation.yaml").string());
+    FAIL() << "expected a ManifestError";
+  } catch (const ManifestError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "targets[0].known_failures[0]: 'sph_dp0.02' is not a result of the runs "
+                  "section (expected one of: sph_dp0.01, foam_dx0.01, foam_dx0.005)"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Validate, ManifestErrorsNameFileLineAndField) {
@@ -279,19 +324,36 @@ TEST(Validate, EndToEndFoamDambreakCoarse) {
   EXPECT_TRUE(found) << log.str();
 }
 
-TEST(Validate, ShippedMartinMoyceFromCommittedResults) {
-  const Manifest m = load_manifest(find_manifest("martin_moyce", SWELL_SOURCE_DIR));
-  if (!fs::exists(fs::path(m.results_dir) / sph_label(m.sph_resolutions.back())))
-    GTEST_SKIP() << "no committed results";
-  ValidateOptions opt;
-  opt.name = "martin_moyce";
-  opt.search_root = SWELL_SOURCE_DIR;
-  opt.out_dir = scratch("martin_moyce").string();
-  std::ostringstream log;
-  const ValidateSummary s = run_validate(opt, log);
-  EXPECT_GE(s.rows, 2);
-  EXPECT_GE(s.targets_pass + s.targets_fail, 1);
-  EXPECT_TRUE(fs::exists(fs::path(opt.out_dir) / "report.md"));
+// Every shipped validation case, from its committed results: each target is met by each
+// result, or the result is listed in the target's known_failures (and a listed result does miss
+// it). A committed result that gets worse, or better, than its manifest says fails here.
+TEST(Validate, ShippedResultsMeetTheirTargetsOrAreKnownFailures) {
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(SWELL_SOURCE_DIR) / "validation")) {
+    const fs::path manifest = entry.path() / "validation.yaml";
+    if (!fs::is_regular_file(manifest)) continue;
+    const std::string name = entry.path().filename().string();
+    SCOPED_TRACE(name);
+    const Manifest m = load_manifest(manifest.string());
+    if (!fs::is_directory(m.results_dir)) continue;
+    ValidateOptions opt;
+    opt.name = name;
+    opt.search_root = SWELL_SOURCE_DIR;
+    opt.out_dir = scratch("shipped_" + name).string();
+    std::ostringstream log;
+    const ValidateSummary s = run_validate(opt, log);
+    EXPECT_GE(s.rows, 2);
+    EXPECT_GE(s.targets_pass + s.targets_fail, 1);
+    EXPECT_TRUE(fs::exists(fs::path(opt.out_dir) / "report.md"));
+    std::string unexpected, stale;
+    for (const auto& u : s.unexpected_failures) unexpected += "\n  " + u;
+    for (const auto& k : s.stale_known_failures) stale += "\n  " + k;
+    EXPECT_TRUE(unexpected.empty()) << "committed results miss targets that " << m.file
+                                    << " does not list in known_failures:" << unexpected;
+    EXPECT_TRUE(stale.empty()) << "known_failures of " << m.file << " out of date:" << stale;
+    ++checked;
+  }
+  EXPECT_GE(checked, 4);  // martin_moyce, lobovsky2d, foam_dambreak2d, spheric_test2
 }
 
 }  // namespace

@@ -1,13 +1,12 @@
 // `swell foam`, part 1: from a CaseSpec to the mesh and sampling plan (make_plan).
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
-#include "geometry/shape_factory.hpp"
+#include "io/case_geometry.hpp"
 #include "validation/foam.hpp"
 #include "validation/foam_plan.hpp"
 
@@ -94,12 +93,15 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
 
   // The tank: the first boundary body with inside walls and a box shape.
   const BodySpec* tank = nullptr;
-  for (const auto& b : spec.bodies)
+  std::size_t tank_index = 0;
+  for (std::size_t i = 0; i < spec.bodies.size() && !tank; ++i) {
+    const BodySpec& b = spec.bodies[i];
     if (b.kind == BodySpec::Kind::Boundary && b.walls == BodySpec::Walls::Inside &&
         b.shape.type == ShapeSpec::Type::Box) {
       tank = &b;
-      break;
+      tank_index = i;
     }
+  }
   if (!tank)
     throw std::invalid_argument(spec.file +
                                 ": swell foam needs a box tank (a boundary body with "
@@ -136,14 +138,8 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
   p.gravity = spec.gravity;
   if (dim == 2) p.gravity[2] = 0.0;
 
-  const std::string base_dir = std::filesystem::path(spec.file).parent_path().string();
-  std::map<std::string, geometry::ShapePtr> shapes;
-  auto shape_of = [&](const BodySpec& b) {
-    auto it = shapes.find(b.name);
-    if (it == shapes.end())
-      it = shapes.emplace(b.name, geometry::build_shape(b.shape, dim, base_dir)).first;
-    return it->second;
-  };
+  // Every body's shape, and each fill's container, as the SPH fill sees them.
+  const std::vector<geometry::BodyGeometry> geo = case_geometry(spec);
   // Boxes given to topoSet/setFields (boxToCell: cells whose centre lies in the box, faces
   // included) are shrunk by 1e-6 cell, so a centre lying exactly on a box face is out on both
   // sides (here and in OpenFOAM) whatever the round-off.
@@ -164,8 +160,9 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
 
   // Obstacles: cells whose centre lies inside the structure are cut out, body by body.
   p.removed.assign(static_cast<std::size_t>(g.count()), 0);
-  for (const auto& b : spec.bodies) {
-    if (b.kind != BodySpec::Kind::Boundary || &b == tank) continue;
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    const BodySpec& b = spec.bodies[i];
+    if (b.kind != BodySpec::Kind::Boundary || i == tank_index) continue;
     if (b.walls == BodySpec::Walls::Inside) {
       p.notes.push_back("body " + b.name +
                         ": a second `walls: inside` body is not meshed (only the tank is)");
@@ -173,7 +170,7 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
     }
     Obstacle ob;
     ob.name = foam_word(b.name);
-    const auto shape = shape_of(b);
+    const geometry::ShapePtr& shape = geo[i].shape;
     const auto bb = shape->bounds();
     Eigen::Vector3d lo = bb.min, hi = bb.max;
     if (dim == 2) lo[2] = hi[2] = 0.0;
@@ -207,15 +204,13 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
 
   // Water: boxes (and fills of the box tank) through setFields; other shapes cell by cell.
   p.wet.assign(static_cast<std::size_t>(g.count()), 0);
-  for (const auto& b : spec.bodies) {
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    const BodySpec& b = spec.bodies[i];
     if (b.kind != BodySpec::Kind::Fluid) continue;
     if (b.fill_below) {
-      const BodySpec* host = nullptr;
-      for (const auto& o : spec.bodies)
-        if (o.name == b.fill_inside) host = &o;
-      if (!host) throw std::invalid_argument("fluid body " + b.name + ": no body " + b.fill_inside);
+      const auto host = static_cast<std::size_t>(geo[i].container);
       const double level = *b.fill_below;
-      if (host == tank) {
+      if (host == tank_index) {
         Eigen::Vector3d top = tank->shape.box.max;
         top[g.up] = level;
         const FluidBox fb{b.name, box_lo(tank->shape.box.min), box_hi(top)};
@@ -223,7 +218,7 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
         for (long c = 0; c < g.count(); ++c)
           if (in_box(g.centre(c), fb.min, fb.max)) p.wet[c] = 1;
       } else {
-        const auto shape = shape_of(*host);
+        const geometry::ShapePtr& shape = geo[host].shape;
         p.alpha_by_list = true;
         for (long c = 0; c < g.count(); ++c) {
           const Eigen::Vector3d x = g.centre(c);
@@ -236,7 +231,7 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
       for (long c = 0; c < g.count(); ++c)
         if (in_box(g.centre(c), fb.min, fb.max)) p.wet[c] = 1;
     } else {
-      const auto shape = shape_of(b);
+      const geometry::ShapePtr& shape = geo[i].shape;
       p.alpha_by_list = true;
       for (long c = 0; c < g.count(); ++c)
         if (shape->contains(g.centre(c))) p.wet[c] = 1;

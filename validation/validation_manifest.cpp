@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -233,7 +234,9 @@ Manifest load_manifest(const std::string& path) {
     for (std::size_t i = 0; i < targets.size(); ++i) {
       const std::string p = "targets[" + std::to_string(i) + "]";
       const YAML::Node t = targets[i];
-      rd.check_keys(t, p, {"gauge", "against", "metric", "runs", "max", "max_abs", "min", "text"});
+      rd.check_keys(t, p,
+                    {"gauge", "against", "metric", "runs", "max", "max_abs", "min", "text",
+                     "known_failures"});
       ManifestTarget mt;
       mt.gauge = rd.text(rd.require(t, p, "gauge"), p + ".gauge");
       mt.against = rd.text(rd.require(t, p, "against"), p + ".against");
@@ -258,6 +261,13 @@ Manifest load_manifest(const std::string& path) {
       if (!mt.max && !mt.max_abs && !mt.min)
         rd.fail(t, p, "give at least one bound: max, max_abs or min");
       mt.text = t["text"] ? rd.text(t["text"], p + ".text") : "";
+      if (const YAML::Node k = t["known_failures"]) {
+        if (!k.IsSequence())
+          rd.fail(k, p + ".known_failures", "expected a list of results such as [sph_dp0.005]");
+        for (std::size_t j = 0; j < k.size(); ++j)
+          mt.known_failures.push_back(
+              rd.text(k[j], p + ".known_failures[" + std::to_string(j) + "]"));
+      }
       bool gauge_known = false;
       for (const auto& g : m.gauges) gauge_known = gauge_known || g.gauge == mt.gauge;
       if (!gauge_known)
@@ -278,6 +288,22 @@ Manifest load_manifest(const std::string& path) {
       rd.check_keys(runs["openfoam"], "runs.openfoam", {"cell_sizes"});
       m.foam_cell_sizes = rd.positive_list(
           rd.require(runs["openfoam"], "runs.openfoam", "cell_sizes"), "runs.openfoam.cell_sizes");
+    }
+  }
+  // A known failure must name a result of the runs section, so a typo cannot excuse nothing.
+  std::vector<std::string> labels;
+  for (const double dp : m.sph_resolutions) labels.push_back(sph_label(dp));
+  for (const double dx : m.foam_cell_sizes) labels.push_back(foam_label(dx));
+  for (std::size_t i = 0; i < m.targets.size(); ++i) {
+    for (std::size_t j = 0; j < m.targets[i].known_failures.size(); ++j) {
+      const std::string& label = m.targets[i].known_failures[j];
+      if (std::find(labels.begin(), labels.end(), label) != labels.end()) continue;
+      std::string list;
+      for (const auto& l : labels) list += (list.empty() ? "" : ", ") + l;
+      rd.fail(root["targets"][i]["known_failures"][j],
+              "targets[" + std::to_string(i) + "].known_failures[" + std::to_string(j) + "]",
+              "'" + label + "' is not a result of the runs section (expected one of: " + list +
+                  ")");
     }
   }
   m.results_dir = resolve(m.dir, root["results"] ? rd.text(root["results"], "results") : "results");

@@ -46,10 +46,13 @@ struct ManifestGauge {
 
 // A target from the issue: `metric` of `gauge` against `against` (a reference name, or
 // "openfoam": the finest OpenFOAM result) must satisfy the bound, for the runs of `runs`
-// (sph | openfoam | all).
+// (sph | openfoam | all). `known_failures` lists the results (labels of the runs section:
+// sph_dp<dp>, foam_dx<size>) known to miss it; the shipped-results test fails on any other
+// miss, and on a listed result that meets the target.
 struct ManifestTarget {
   std::string gauge, against, metric, runs = "all", text;
   std::optional<double> max, max_abs, min;
+  std::vector<std::string> known_failures;
 };
 
 struct Manifest {

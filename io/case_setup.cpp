@@ -1,77 +1,19 @@
-#include "apps/case_runner.hpp"
-
-#include <omp.h>
-#include <unistd.h>
+// From a parsed case to particles, parameters and the simulation (io/case_setup.hpp).
+#include "io/case_setup.hpp"
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iomanip>
-#include <iostream>
-#include <sstream>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "bc/dbc.hpp"
 #include "bc/moving_bodies.hpp"
 #include "geometry/lattice_fill.hpp"
-#include "geometry/shape_factory.hpp"
 #include "io/case_file.hpp"
+#include "io/case_geometry.hpp"
 
 namespace swell {
-namespace {
-
-ViscosityModel viscosity_from(const std::string& s) {
-  return s == "laminar" ? ViscosityModel::Laminar : ViscosityModel::Artificial;
-}
-DiffusionModel diffusion_from(const std::string& s) {
-  if (s == "none") return DiffusionModel::None;
-  if (s == "molteni") return DiffusionModel::MolteniColagrossi;
-  return DiffusionModel::Fourtakas;
-}
-
-// The case's bodies as geometry: shapes built (meshes loaded) and fill_inside resolved.
-std::vector<geometry::BodyGeometry> to_geometry(const CaseSpec& spec,
-                                                std::vector<geometry::MeshReport>* meshes) {
-  const std::string base_dir = std::filesystem::path(spec.file).parent_path().string();
-  std::vector<geometry::BodyGeometry> out;
-  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
-    const BodySpec& b = spec.bodies[i];
-    const std::string key = "bodies[" + std::to_string(i) + "]";
-    geometry::BodyGeometry g;
-    g.name = b.name;
-    g.fluid = b.kind == BodySpec::Kind::Fluid;
-    g.walls_inside = b.walls == BodySpec::Walls::Inside;
-    g.layers = b.layers;
-    g.open = b.open;
-    if (g.fluid && b.fill_below) {
-      g.fill_below = b.fill_below;
-      for (std::size_t c = 0; c < spec.bodies.size(); ++c)
-        if (spec.bodies[c].name == b.fill_inside) g.container = static_cast<int>(c);
-      if (g.container < 0)
-        throw CaseError(spec.file, b.line,
-                        key + ".fill.inside: there is no body named '" + b.fill_inside + "'");
-      const BodySpec& c = spec.bodies[static_cast<std::size_t>(g.container)];
-      if (c.kind != BodySpec::Kind::Boundary || c.walls != BodySpec::Walls::Inside)
-        throw CaseError(spec.file, b.line,
-                        key + ".fill.inside: '" + b.fill_inside +
-                            "' must be a boundary body with walls: inside (a tank)");
-    } else {
-      try {
-        g.shape = geometry::build_shape(b.shape, spec.dim, base_dir, meshes);
-      } catch (const geometry::ShapeError& e) {
-        throw CaseError(spec.file, e.line() > 0 ? e.line() : b.line,
-                        key + ".shape: " + e.message());
-      }
-    }
-    out.push_back(std::move(g));
-  }
-  return out;
-}
-
-}  // namespace
-
 template <int D>
 CaseSetup<D> setup_case(const CaseSpec& spec) {
   CaseSetup<D> s;
@@ -79,7 +21,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   geometry::FillOptions fo;
   fo.dim = D;
   fo.dp = spec.dp;
-  const std::vector<geometry::BodyGeometry> geo = to_geometry(spec, &s.meshes);
+  const std::vector<geometry::BodyGeometry> geo = case_geometry(spec, &s.meshes);
   std::vector<geometry::FilledBody> filled;
   try {
     filled = geometry::fill_bodies(geo, fo);
@@ -91,16 +33,16 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   SolverParams& p = s.params;
   p.dp = spec.dp;
   p.h = spec.coefh * std::sqrt(static_cast<double>(D)) * spec.dp;
-  p.kernel = kernel_from_name(spec.kernel);
+  p.kernel = spec.kernel;
   p.rho0 = spec.rho0;
   p.gravity = spec.gravity;
   if (D == 2) p.gravity.z() = 0.0;
-  p.viscosity = viscosity_from(spec.viscosity_model);
+  p.viscosity = spec.viscosity_model;
   p.alpha = spec.alpha;
   p.nu = spec.nu;
-  p.diffusion = diffusion_from(spec.diffusion_model);
+  p.diffusion = spec.diffusion_model;
   p.delta = spec.delta;
-  p.integrator = spec.integrator == "verlet" ? IntegratorType::Verlet : IntegratorType::Symplectic;
+  p.integrator = spec.integrator;
   p.verlet_steps = spec.verlet_steps;
   p.cfl = spec.cfl;
   p.rho_min_factor = spec.rho_min_factor;

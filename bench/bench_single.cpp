@@ -1,15 +1,14 @@
-// One benchmark measurement (`swell bench --single`, or the lean `swell_bench_run`): builds
-// the case's particles, steps it with no output and prints one `bench-result` line. Kept apart
-// from the driver so the lean runner links only the solver, the geometry and the case parser.
+// One benchmark measurement: see bench/bench_single.hpp.
+#include "bench/bench_single.hpp"
+
 #include <omp.h>
 
 #include <iomanip>
 #include <ostream>
 
-#include "apps/bench_command.hpp"
-#include "apps/case_runner.hpp"
 #include "bench/bench_run.hpp"
 #include "io/case_file.hpp"
+#include "io/case_setup.hpp"
 
 namespace swell {
 namespace {

@@ -1,0 +1,62 @@
+// The names of the solver's model choices (solver/physics/kernels.hpp KernelType,
+// solver/solver_params.hpp ViscosityModel, DiffusionModel, IntegratorType) as written in case
+// files and outputs (HDF5 metadata): one name function per enum, and every value of each enum
+// in the order the case-file reader lists them. The reader turns names into enums once, at
+// parse time; nothing downstream compares model names.
+#pragma once
+
+#include <array>
+#include <type_traits>
+
+#include "solver/physics/kernels.hpp"
+#include "solver/solver_params.hpp"
+
+namespace swell {
+
+inline constexpr std::array kKernelTypes{KernelType::Wendland, KernelType::Cubic,
+                                         KernelType::Quintic, KernelType::Gaussian};
+inline constexpr std::array kViscosityModels{ViscosityModel::Artificial, ViscosityModel::Laminar};
+inline constexpr std::array kDiffusionModels{
+    DiffusionModel::Fourtakas, DiffusionModel::MolteniColagrossi, DiffusionModel::None};
+inline constexpr std::array kIntegratorTypes{IntegratorType::Symplectic, IntegratorType::Verlet};
+
+// The kernel type's own name (its kName: wendland, cubic, quintic, gaussian), the name
+// kernel_from_name() reads back.
+inline const char* kernel_name(KernelType k) {
+  return with_kernel<3>(k, 1.0,
+                        [](const auto& kernel) { return std::decay_t<decltype(kernel)>::kName; });
+}
+
+inline const char* viscosity_name(ViscosityModel m) {
+  switch (m) {
+    case ViscosityModel::Artificial:
+      return "artificial";
+    case ViscosityModel::Laminar:
+      return "laminar";
+  }
+  return "viscosity";
+}
+
+inline const char* diffusion_name(DiffusionModel m) {
+  switch (m) {
+    case DiffusionModel::Fourtakas:
+      return "fourtakas";
+    case DiffusionModel::MolteniColagrossi:
+      return "molteni";
+    case DiffusionModel::None:
+      return "none";
+  }
+  return "diffusion";
+}
+
+inline const char* integrator_name(IntegratorType t) {
+  switch (t) {
+    case IntegratorType::Symplectic:
+      return "symplectic";
+    case IntegratorType::Verlet:
+      return "verlet";
+  }
+  return "integrator";
+}
+
+}  // namespace swell
