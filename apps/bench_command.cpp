@@ -104,8 +104,8 @@ std::string runner_command(const fs::path& exe) {
 Measurement measure(const fs::path& exe, const std::string& file, double dp, int threads,
                     double end, long steps, long warmup) {
   std::ostringstream cmd;
-  cmd << runner_command(exe) << " " << shell_quote(file) << " --dp " << std::setprecision(17)
-      << dp << " -t " << threads;
+  cmd << runner_command(exe) << " " << shell_quote(file) << " --dp " << std::setprecision(17) << dp
+      << " -t " << threads;
   if (end > 0.0) cmd << " --end " << end;
   if (steps > 0) cmd << " --steps " << steps << " --warmup " << warmup;
   cmd << " 2>&1";
@@ -171,7 +171,8 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
   const auto all = builtin_cases();
   if (opt.cases.empty() && !opt.sweep) cases = all;
   for (const auto& name : opt.cases) {
-    const auto it = std::find_if(all.begin(), all.end(), [&](const auto& c) { return c.name == name; });
+    const auto it =
+        std::find_if(all.begin(), all.end(), [&](const auto& c) { return c.name == name; });
     if (it == all.end())
       throw std::invalid_argument("bench: unknown case '" + name +
                                   "' (expected b2d, b3d or b3d_fine)");
@@ -189,9 +190,10 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
     runs_csv.open(out / "bench_runs.csv");
     sum_csv.open(out / "bench_summary.csv");
   }
-  runs_csv << "# every run of swell bench; pss = particles x steps / wall [1/s], times [s], RSS [kB]\n"
-           << "case,dp,threads,repeat,particles,steps,wall,pss,neighbour,interaction,integration,"
-              "other,rss_base_kb,rss_peak_kb\n";
+  runs_csv
+      << "# every run of swell bench; pss = particles x steps / wall [1/s], times [s], RSS [kB]\n"
+      << "case,dp,threads,repeat,particles,steps,wall,pss,neighbour,interaction,integration,"
+         "other,rss_base_kb,rss_peak_kb\n";
   sum_csv << "# medians over repeats; dsph_pss: DualSPHysics 5.4 CPU, same case (issue #5)\n"
           << "case,dp,threads,particles,steps,wall,pss,dsph_pss,ratio,neighbour,interaction,"
              "integration,other,rss_peak_mb,bytes_per_particle\n";
@@ -214,9 +216,9 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
             << std::setprecision(4) << m.get("wall") << " s\n";
         runs_csv << c.name << "," << c.dp << "," << t << "," << r << "," << m.get("particles")
                  << "," << m.get("steps") << "," << m.get("wall") << "," << m.get("pss") << ","
-                 << m.get("neighbour") << "," << m.get("interaction") << ","
-                 << m.get("integration") << "," << m.get("other") << "," << m.get("rss_base_kb")
-                 << "," << m.get("rss_peak_kb") << "\n";
+                 << m.get("neighbour") << "," << m.get("interaction") << "," << m.get("integration")
+                 << "," << m.get("other") << "," << m.get("rss_base_kb") << ","
+                 << m.get("rss_peak_kb") << "\n";
         ms.push_back(m);
         pss.push_back(m.get("pss"));
       }
@@ -241,17 +243,18 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
       sum_csv << c.name << "," << c.dp << "," << t << "," << n << "," << med.get("steps") << ","
               << w << "," << p << "," << ref << "," << (ref > 0 ? p / ref : 0.0) << ","
               << med.get("neighbour") << "," << med.get("interaction") << ","
-              << med.get("integration") << "," << med.get("other") << "," << rss_mb << ","
-              << bpp << "\n";
+              << med.get("integration") << "," << med.get("other") << "," << rss_mb << "," << bpp
+              << "\n";
       std::ostringstream ratio;
       ratio << std::fixed << std::setprecision(2) << (ref > 0 ? p / ref : 0.0) << "x";
       table << "| " << c.name << " (dp " << c.dp << ") | " << static_cast<long>(n) << " | "
-            << static_cast<long>(med.get("steps")) << " (" << (c.ref.steps ? std::to_string(c.ref.steps) : "-")
-            << ") | " << t << " | " << std::fixed << std::setprecision(1) << w << " | " << mega(p)
-            << " | " << (ref > 0 ? mega(ref) : "-") << " | " << (ref > 0 ? ratio.str() : "-")
-            << " | " << pct("neighbour") << " / " << pct("interaction") << " / "
-            << pct("integration") << " / " << pct("other") << " | " << std::setprecision(1)
-            << rss_mb << " (" << c.ref.rss_mb << ") | " << std::setprecision(0) << bpp << " |\n";
+            << static_cast<long>(med.get("steps")) << " ("
+            << (c.ref.steps ? std::to_string(c.ref.steps) : "-") << ") | " << t << " | "
+            << std::fixed << std::setprecision(1) << w << " | " << mega(p) << " | "
+            << (ref > 0 ? mega(ref) : "-") << " | " << (ref > 0 ? ratio.str() : "-") << " | "
+            << pct("neighbour") << " / " << pct("interaction") << " / " << pct("integration")
+            << " / " << pct("other") << " | " << std::setprecision(1) << rss_mb << " ("
+            << c.ref.rss_mb << ") | " << std::setprecision(0) << bpp << " |\n";
       table.unsetf(std::ios::fixed);
       table << std::setprecision(6);
     }
@@ -276,8 +279,9 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
     const fs::path sweep_csv = out / "scaling.csv";
     std::ofstream sw(sweep_csv);
     sw << "# swell bench --sweep: B3D (bench/cases/b3d.yaml) over dp, " << t << " thread(s), "
-       << opt.sweep_steps << " timed steps after " << opt.sweep_warmup << " warm-up steps, median of "
-       << opt.repeats << " run(s); " << cpu_model() << ", " << date << "\n"
+       << opt.sweep_steps << " timed steps after " << opt.sweep_warmup
+       << " warm-up steps, median of " << opt.repeats << " run(s); " << cpu_model() << ", " << date
+       << "\n"
        << "dp,particles,fluid,steps,wall,pss,ns_per_particle_step,ns_per_fluid_particle_step,"
           "neighbour,interaction,integration,rss_peak_mb,bytes_per_particle\n";
     const std::string file = (dir / "cases" / "b3d.yaml").string();
@@ -294,11 +298,11 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
                 [](const auto& a, const auto& b) { return a.get("pss") < b.get("pss"); });
       const Measurement& m = ms[ms.size() / 2];
       const double n = m.get("particles");
-      sw << dp << "," << n << "," << m.get("fluid") << "," << m.get("steps") << ","
-         << m.get("wall") << "," << m.get("pss") << "," << 1e9 / m.get("pss") << ","
-         << 1e9 * m.get("wall") / (m.get("fluid") * m.get("steps")) << ","
-         << m.get("neighbour") << "," << m.get("interaction")
-         << "," << m.get("integration") << "," << m.get("rss_peak_kb") / 1024.0 << ","
+      sw << dp << "," << n << "," << m.get("fluid") << "," << m.get("steps") << "," << m.get("wall")
+         << "," << m.get("pss") << "," << 1e9 / m.get("pss") << ","
+         << 1e9 * m.get("wall") / (m.get("fluid") * m.get("steps")) << "," << m.get("neighbour")
+         << "," << m.get("interaction") << "," << m.get("integration") << ","
+         << m.get("rss_peak_kb") / 1024.0 << ","
          << (m.get("rss_peak_kb") - m.get("rss_base_kb")) * 1024.0 / n << "\n";
       sw.flush();
     }

@@ -32,7 +32,6 @@ const char* kind_comment(GaugeSpec::Kind k) {
 
 }  // namespace
 
-
 template <int D>
 std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
                                    const ParticleSet<D>& ps, const std::vector<double>& pressure,

@@ -10,8 +10,8 @@
 
 #include "io/case_spec.hpp"
 #include "io/gauge_csv.hpp"
-#include "solver/state/particle_set.hpp"
 #include "solver/solver_params.hpp"
+#include "solver/state/particle_set.hpp"
 
 namespace swell {
 

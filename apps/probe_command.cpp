@@ -70,8 +70,7 @@ int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadat
     ps.reserve(s.pos.size());
     double top = -1e300;
     for (std::size_t i = 0; i < s.pos.size(); ++i) {
-      ps.add(s.pos[i], s.vel[i], s.rho[i], s.mass[i], static_cast<Role>(s.type[i]),
-             s.body[i]);
+      ps.add(s.pos[i], s.vel[i], s.rho[i], s.mass[i], static_cast<Role>(s.type[i]), s.body[i]);
       ps.id[i] = s.id[i];
       top = std::max(top, s.pos[i][D - 1]);
     }

@@ -84,7 +84,8 @@ class MovingBodies final : public StepHook<D> {
         return it->second;
       };
       double diff = std::abs(saved("theta") - poses_[b].theta);
-      for (int d = 0; d < 3; ++d) diff = std::max(diff, std::abs(saved("d" + std::to_string(d)) - poses_[b].d[d]));
+      for (int d = 0; d < 3; ++d)
+        diff = std::max(diff, std::abs(saved("d" + std::to_string(d)) - poses_[b].d[d]));
       if (!(diff <= 1e-12 * (1.0 + poses_[b].d.norm() + std::abs(poses_[b].theta))))
         throw std::invalid_argument(
             "checkpoint: body " + std::to_string(b) + "'s pose at t = " + std::to_string(t_last_) +
@@ -102,7 +103,7 @@ class MovingBodies final : public StepHook<D> {
     }
     t_last_ = t;
     const long n = static_cast<long>(ps.size());
-#pragma omp parallel for schedule(static) if (n > ParticleSet<D>::kParallelMin)
+#pragma omp parallel for schedule(static) if (n > ParticleSet <D>::kParallelMin)
     for (long i = 0; i < n; ++i) {
       if (ps.role[i] != Role::MovingWall) continue;
       const auto b = ps.body[i];

@@ -18,8 +18,8 @@ struct RunResult {
   std::size_t particles = 0, fluid = 0;
   long steps = 0;
   double sim_time = 0.0;
-  double wall = 0.0;  // seconds in the time loop
-  PhaseTimes phases;  // neighbour sort, interaction, integration [s]
+  double wall = 0.0;   // seconds in the time loop
+  PhaseTimes phases;   // neighbour sort, interaction, integration [s]
   double other = 0.0;  // time loop minus the three phases (dt choice, bounds check, loop) [s]
   double particle_steps_per_second() const {
     return wall > 0.0 ? static_cast<double>(particles) * static_cast<double>(steps) / wall : 0.0;

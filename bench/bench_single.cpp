@@ -32,15 +32,14 @@ int run_bench_single(const BenchSingleOptions& opt, std::ostream& out) {
   CaseSpec spec = load_case_file(opt.case_file);
   if (opt.dp > 0.0) spec.dp = opt.dp;
   if (opt.end > 0.0) spec.t_end = opt.end;
-  const bench::RunResult r =
-      spec.dim == 2 ? single_dim<2>(spec, opt) : single_dim<3>(spec, opt);
+  const bench::RunResult r = spec.dim == 2 ? single_dim<2>(spec, opt) : single_dim<3>(spec, opt);
   const long rss_peak = bench::proc_status_kb("VmHWM");
   out << std::setprecision(9) << "bench-result particles=" << r.particles << " fluid=" << r.fluid
       << " steps=" << r.steps << " sim_time=" << r.sim_time << " wall=" << r.wall
       << " pss=" << r.particle_steps_per_second() << " neighbour=" << r.phases.neighbour
       << " interaction=" << r.phases.interaction << " integration=" << r.phases.integration
-      << " other=" << r.other << " threads=" << omp_get_max_threads()
-      << " rss_base_kb=" << rss_base << " rss_peak_kb=" << rss_peak << "\n";
+      << " other=" << r.other << " threads=" << omp_get_max_threads() << " rss_base_kb=" << rss_base
+      << " rss_peak_kb=" << rss_peak << "\n";
   return 0;
 }
 

@@ -14,7 +14,6 @@
 
 namespace swell {
 
-
 struct BodySpec {
   std::string name;
   enum class Kind { Fluid, Boundary };
@@ -90,12 +89,12 @@ struct CaseSpec {
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, -9.81, 0.0);  // default: -y in 2D, -z in 3D
   double coefsound = 20.0;
   double coefh = 1.0;
-  std::optional<double> hswl;       // still-water height for c0; default: from the fluid particles
+  std::optional<double> hswl;  // still-water height for c0; default: from the fluid particles
   // Models: the solver's enums, read from their names (io/model_names.hpp) by the reader.
   KernelType kernel = KernelType::Wendland;  // wendland | cubic | quintic | gaussian
   ViscosityModel viscosity_model = ViscosityModel::Artificial;  // artificial | laminar
-  double alpha = 0.01;  // artificial viscosity coefficient
-  double nu = 1.0e-6;   // kinematic viscosity, laminar model [m^2/s]
+  double alpha = 0.01;                                          // artificial viscosity coefficient
+  double nu = 1.0e-6;  // kinematic viscosity, laminar model [m^2/s]
   DiffusionModel diffusion_model = DiffusionModel::Fourtakas;  // fourtakas | molteni | none
   double delta = 0.1;
   double rho_min_factor = 0.7, rho_max_factor = 1.3;  // fluid density bounds before exclusion

@@ -41,9 +41,9 @@ TEST(Bench, SingleRunReportsCountsStepsAndMemory) {
   const std::string exe = std::string(SWELL_BINARY_DIR) + "/swell_bench_run";
   ASSERT_TRUE(fs::exists(exe)) << exe;
   int status = 0;
-  const std::string out = run(exe + " " + SWELL_SOURCE_DIR "/bench/cases/b2d.yaml --dp 0.04 " +
-                                  "--steps 5 --warmup 2 -t 1",
-                              &status);
+  const std::string out = run(
+      exe + " " + SWELL_SOURCE_DIR "/bench/cases/b2d.yaml --dp 0.04 " + "--steps 5 --warmup 2 -t 1",
+      &status);
   ASSERT_EQ(status, 0) << out;
   const auto v = parse_result(out);
   ASSERT_FALSE(v.empty()) << out;
@@ -62,8 +62,8 @@ TEST(Bench, SingleRunReportsCountsStepsAndMemory) {
 TEST(Bench, SingleRunToAnEndTimeAndBadInput) {
   const std::string exe = std::string(SWELL_BINARY_DIR) + "/swell_bench_run";
   int status = 0;
-  std::string out = run(exe + " " + SWELL_SOURCE_DIR "/bench/cases/b3d.yaml --dp 0.06 --end 0.002",
-                        &status);
+  std::string out =
+      run(exe + " " + SWELL_SOURCE_DIR "/bench/cases/b3d.yaml --dp 0.06 --end 0.002", &status);
   ASSERT_EQ(status, 0) << out;
   const auto v = parse_result(out);
   EXPECT_GE(v.at("sim_time"), 0.002);

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <random>
 
+#include "bc/dbc.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/time/simulation.hpp"
-#include "bc/dbc.hpp"
 
 namespace swell {
 namespace {
@@ -54,8 +54,8 @@ template <int D>
 void check_momentum(IntegratorType integ, ViscosityModel visc) {
   const double dp = 0.01;
   const int n_side = D == 2 ? 24 : 10;
-  Simulation<D> sim(free_params<D>(dp, n_side, integ, visc),
-                    random_block<D>(n_side, dp, 1000.0, 7), make_dbc<D>());
+  Simulation<D> sim(free_params<D>(dp, n_side, integ, visc), random_block<D>(n_side, dp, 1000.0, 7),
+                    make_dbc<D>());
   const auto before = fluid_totals(sim.particles());
   const auto mass_by_id = [&sim]() {
     std::vector<double> m(sim.particles().total());

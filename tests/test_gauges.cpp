@@ -168,7 +168,7 @@ TEST(BodyLoad, TwoParticlesGiveExactForceAndMoment2D) {
   ps.add(Vec<2>(1.0, 0.0), Vec<2>::Zero(), 1000.0, 2.0, Role::FixedWall, 3);
   ps.add(Vec<2>(0.0, 2.0), Vec<2>::Zero(), 1000.0, 0.5, Role::FixedWall, 3);
   ps.add(Vec<2>(5.0, 5.0), Vec<2>::Zero(), 1000.0, 7.0, Role::FixedWall, 1);  // other body
-  ps.add(Vec<2>(5.0, 5.0), Vec<2>::Zero(), 1000.0, 7.0, Role::Fluid, 3);     // not a wall
+  ps.add(Vec<2>(5.0, 5.0), Vec<2>::Zero(), 1000.0, 7.0, Role::Fluid, 3);      // not a wall
   const std::vector<Vec<2>> ace = {Vec<2>(0.0, 3.0), Vec<2>(4.0, 0.0), Vec<2>(9.0, 9.0),
                                    Vec<2>(9.0, 9.0)};
   // F = 2 (0, 3) + 0.5 (4, 0) = (2, 6).

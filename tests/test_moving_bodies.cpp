@@ -11,10 +11,10 @@
 // Each test runs the real case path (case text -> setup_case -> make_simulation).
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <Eigen/Dense>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -132,15 +132,22 @@ void accelerated_closed_box(double dp, double tol) {
   EXPECT_EQ(n1.count, n0.count);
   EXPECT_EQ(n1.mass, n0.mass);
   EXPECT_EQ(sim.excluded().total(), 0u);
-  std::printf("[ measured ] %dD closed box: gauge impulse %.6f N s, fluid momentum %.6f kg m/s, "
-              "M v_box %.6f\n", D, impulse, momentum, n0.mass * box_v);
-  std::printf("[ measured ] %dD closed box: -dp/dx L %.2f Pa vs rho a L %.2f Pa (%+.2f %%); wall "
-              "strips (centres %.1f dp apart) differ by %.2f Pa\n",
-              D, measured, expected, 100.0 * (measured / expected - 1.0), L / dp - 2.0, strips);
+  std::printf(
+      "[ measured ] %dD closed box: gauge impulse %.6f N s, fluid momentum %.6f kg m/s, "
+      "M v_box %.6f\n",
+      D, impulse, momentum, n0.mass * box_v);
+  std::printf(
+      "[ measured ] %dD closed box: -dp/dx L %.2f Pa vs rho a L %.2f Pa (%+.2f %%); wall "
+      "strips (centres %.1f dp apart) differ by %.2f Pa\n",
+      D, measured, expected, 100.0 * (measured / expected - 1.0), L / dp - 2.0, strips);
 }
 
-TEST(MovingBodies, AcceleratedClosedBoxPressureIsRhoAL2D) { accelerated_closed_box<2>(0.005, 0.05); }
-TEST(MovingBodies, AcceleratedClosedBoxPressureIsRhoAL3D) { accelerated_closed_box<3>(0.01, 0.08); }
+TEST(MovingBodies, AcceleratedClosedBoxPressureIsRhoAL2D) {
+  accelerated_closed_box<2>(0.005, 0.05);
+}
+TEST(MovingBodies, AcceleratedClosedBoxPressureIsRhoAL3D) {
+  accelerated_closed_box<3>(0.01, 0.08);
+}
 
 // --- Open tank, constant acceleration ----------------------------------------------------------
 
@@ -319,9 +326,10 @@ double sloshing_period_error(double dp) {
   }
   EXPECT_GT(amplitude, 0.5e-3) << "the fluid does not slosh (dp " << dp << ")";
   const double measured = 2.0 * M_PI / best_w;
-  std::printf("[ measured ] dp %.4f: sloshing period %.4f s vs linear theory %.4f s (%+.2f %%), "
-              "centre of mass amplitude %.2f mm\n",
-              dp, measured, period, 100.0 * (measured / period - 1.0), 1e3 * amplitude);
+  std::printf(
+      "[ measured ] dp %.4f: sloshing period %.4f s vs linear theory %.4f s (%+.2f %%), "
+      "centre of mass amplitude %.2f mm\n",
+      dp, measured, period, 100.0 * (measured / period - 1.0), 1e3 * amplitude);
   return measured / period - 1.0;
 }
 

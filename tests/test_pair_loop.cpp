@@ -1,17 +1,18 @@
 // The vectorised pair loop (neighbours/pair_driver.hpp + physics/wcsph_evaluator.hpp: packed
 // neighbour lists, padding, wall flag in the list entry, DBC's wall selection) against a
 // brute-force O(N^2) evaluation of the same equations written with the value types of
-// solver/physics/ in vector form and the kernels' branchy f(r). Random particles (jittered lattice with gaps, walls mixed in, random velocities and
-// densities), every kernel, both viscosity models, the three diffusion settings, 2D and 3D.
+// solver/physics/ in vector form and the kernels' branchy f(r). Random particles (jittered lattice
+// with gaps, walls mixed in, random velocities and densities), every kernel, both viscosity models,
+// the three diffusion settings, 2D and 3D.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "solver/neighbours/cell_grid.hpp"
-#include "solver/physics/wcsph_forces.hpp"
 #include "solver/physics/density_diffusion.hpp"
 #include "solver/physics/viscosity.hpp"
+#include "solver/physics/wcsph_forces.hpp"
 
 namespace swell {
 namespace {
@@ -34,7 +35,8 @@ ParticleSet<D> random_particles(int n_side, double dp, unsigned seed) {
         // Walls: the bottom two layers and a sprinkling inside.
         const bool wall = j < 2 || u01(rng) < 0.08;
         if (wall) v.setZero();
-        ps.add(x, v, 1000.0 * (1.0 + 0.02 * u(rng)), 1000.0 * std::pow(dp, D) * (1.0 + 0.1 * u(rng)),
+        ps.add(x, v, 1000.0 * (1.0 + 0.02 * u(rng)),
+               1000.0 * std::pow(dp, D) * (1.0 + 0.1 * u(rng)),
                wall ? Role::FixedWall : Role::Fluid, 0);
       }
   // One particle exactly on top of another: a coincident pair is skipped by both loops.
@@ -81,8 +83,8 @@ Reference brute_force(const ParticleSet<D>& ps, const K& kernel, const SolverPar
       const double vr = vab.dot(rab);
       const double inv_r2e = 1.0 / (r2 + p.eta2());
       if (p.viscosity == ViscosityModel::Artificial)
-        pterm += av.pi(av.mu(vr, inv_r2e), eos.sound_speed(rho_a), eos.sound_speed(rho_b), rho_a,
-                       rho_b);
+        pterm +=
+            av.pi(av.mu(vr, inv_r2e), eos.sound_speed(rho_a), eos.sound_speed(rho_b), rho_a, rho_b);
       else
         acc += lam.factor(m_b, rab.dot(gradw), rho_a, rho_b, inv_r2e) * vab;
       acc -= m_b * pterm * gradw;
@@ -136,7 +138,8 @@ void compare(KernelType kt, ViscosityModel visc, DiffusionModel diff, double gam
     for (std::size_t i = 0; i < ps.size(); ++i) {
       ASSERT_NEAR(f.drho[i], ref.drho[i], 1e-11 * drho_scale) << "particle " << i;
       for (int d = 0; d < D; ++d)
-        ASSERT_NEAR(f.ace[i][d], ref.ace[i][d], 1e-11 * ace_scale) << "particle " << i << " axis " << d;
+        ASSERT_NEAR(f.ace[i][d], ref.ace[i][d], 1e-11 * ace_scale)
+            << "particle " << i << " axis " << d;
       walls_with_load += ps.role[i] == Role::FixedWall && ref.ace[i].norm() > 0.0;
     }
     EXPECT_GT(walls_with_load, 10);  // the wall branch was exercised
@@ -148,7 +151,8 @@ void compare(KernelType kt, ViscosityModel visc, DiffusionModel diff, double gam
   }
 }
 
-class PairLoop : public ::testing::TestWithParam<std::tuple<KernelType, ViscosityModel, DiffusionModel>> {};
+class PairLoop
+    : public ::testing::TestWithParam<std::tuple<KernelType, ViscosityModel, DiffusionModel>> {};
 
 TEST_P(PairLoop, MatchesBruteForce2D) {
   compare<2>(std::get<0>(GetParam()), std::get<1>(GetParam()), std::get<2>(GetParam()));
@@ -160,12 +164,16 @@ TEST_P(PairLoop, MatchesBruteForce3D) {
 INSTANTIATE_TEST_SUITE_P(
     AllModels, PairLoop,
     ::testing::Values(
-        std::make_tuple(KernelType::Wendland, ViscosityModel::Artificial, DiffusionModel::Fourtakas),
-        std::make_tuple(KernelType::Wendland, ViscosityModel::Laminar, DiffusionModel::MolteniColagrossi),
+        std::make_tuple(KernelType::Wendland, ViscosityModel::Artificial,
+                        DiffusionModel::Fourtakas),
+        std::make_tuple(KernelType::Wendland, ViscosityModel::Laminar,
+                        DiffusionModel::MolteniColagrossi),
         std::make_tuple(KernelType::Cubic, ViscosityModel::Artificial, DiffusionModel::Fourtakas),
         std::make_tuple(KernelType::Cubic, ViscosityModel::Laminar, DiffusionModel::None),
-        std::make_tuple(KernelType::Quintic, ViscosityModel::Artificial, DiffusionModel::MolteniColagrossi),
-        std::make_tuple(KernelType::Gaussian, ViscosityModel::Artificial, DiffusionModel::Fourtakas),
+        std::make_tuple(KernelType::Quintic, ViscosityModel::Artificial,
+                        DiffusionModel::MolteniColagrossi),
+        std::make_tuple(KernelType::Gaussian, ViscosityModel::Artificial,
+                        DiffusionModel::Fourtakas),
         std::make_tuple(KernelType::Gaussian, ViscosityModel::Laminar, DiffusionModel::Fourtakas)));
 
 // The loop takes P/rho^2 and c from the EoS buffers, so any Tait exponent gives the brute-force

@@ -300,10 +300,10 @@ Manifest load_manifest(const std::string& path) {
       if (std::find(labels.begin(), labels.end(), label) != labels.end()) continue;
       std::string list;
       for (const auto& l : labels) list += (list.empty() ? "" : ", ") + l;
-      rd.fail(root["targets"][i]["known_failures"][j],
-              "targets[" + std::to_string(i) + "].known_failures[" + std::to_string(j) + "]",
-              "'" + label + "' is not a result of the runs section (expected one of: " + list +
-                  ")");
+      rd.fail(
+          root["targets"][i]["known_failures"][j],
+          "targets[" + std::to_string(i) + "].known_failures[" + std::to_string(j) + "]",
+          "'" + label + "' is not a result of the runs section (expected one of: " + list + ")");
     }
   }
   m.results_dir = resolve(m.dir, root["results"] ? rd.text(root["results"], "results") : "results");

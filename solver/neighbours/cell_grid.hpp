@@ -107,7 +107,7 @@ class CellGrid {
     // cells holding fluid: wall cells with no fluid around them can skip the pair loop.
     has_fluid_.resize(num_cells_);
     const long ncells = static_cast<long>(num_cells_);
-#pragma omp parallel for schedule(static) if (ln > ParticleSet<D>::kParallelMin)
+#pragma omp parallel for schedule(static) if (ln > ParticleSet <D>::kParallelMin)
     for (long c = 0; c < ncells; ++c) {
       std::uint8_t any = 0;
       for (std::uint32_t i = start_[c]; i < start_[c + 1]; ++i) {
@@ -122,9 +122,15 @@ class CellGrid {
   }
 
   // Index range [begin, end) of the particles in cell c (valid after sort()).
-  std::uint32_t begin(std::size_t c) const { return start_[c]; }
-  std::uint32_t end(std::size_t c) const { return start_[c + 1]; }
-  std::uint32_t cell_of(std::size_t i) const { return cell_of_[i]; }
+  std::uint32_t begin(std::size_t c) const {
+    return start_[c];
+  }
+  std::uint32_t end(std::size_t c) const {
+    return start_[c + 1];
+  }
+  std::uint32_t cell_of(std::size_t i) const {
+    return cell_of_[i];
+  }
 
   // Calls fn(begin, end) for the 3^(D-1) contiguous index ranges covering the 3^D cells around
   // cell c. c must be an interior cell (any cell holding an active particle is).

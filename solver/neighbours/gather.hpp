@@ -61,18 +61,23 @@ inline std::uint32_t gather_neighbours(const double* P, const Role* role, const 
     const unsigned nd = (left >= 8 ? 8u : left) * D;  // doubles to read
     auto part = [nd](unsigned from) {
       return nd >= from + 8 ? __mmask8(0xFF)
-                            : nd > from ? __mmask8((1u << (nd - from)) - 1u) : __mmask8(0);
+             : nd > from    ? __mmask8((1u << (nd - from)) - 1u)
+                            : __mmask8(0);
     };
     __m512d xb[D];
-    const __m512d c0 = _mm512_maskz_loadu_pd(part(0), p), c1 = _mm512_maskz_loadu_pd(part(8), p + 8);
+    const __m512d c0 = _mm512_maskz_loadu_pd(part(0), p),
+                  c1 = _mm512_maskz_loadu_pd(part(8), p + 8);
     if constexpr (D == 2) {
       xb[0] = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14), c1);
       xb[1] = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15), c1);
     } else {
       const __m512d c2 = _mm512_maskz_loadu_pd(part(16), p + 16);
-      const __m512d tx = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0), c1);
-      const __m512d ty = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0), c1);
-      const __m512d tz = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0), c1);
+      const __m512d tx =
+          _mm512_permutex2var_pd(c0, _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0), c1);
+      const __m512d ty =
+          _mm512_permutex2var_pd(c0, _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0), c1);
+      const __m512d tz =
+          _mm512_permutex2var_pd(c0, _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0), c1);
       xb[0] = _mm512_permutex2var_pd(tx, _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13), c2);
       xb[1] = _mm512_permutex2var_pd(ty, _mm512_setr_epi64(0, 1, 2, 3, 4, 8, 11, 14), c2);
       xb[2] = _mm512_permutex2var_pd(tz, _mm512_setr_epi64(0, 1, 2, 3, 4, 9, 12, 15), c2);
@@ -84,8 +89,8 @@ inline std::uint32_t gather_neighbours(const double* P, const Role* role, const 
     }
     const __m128i kb = _mm_maskz_loadu_epi8(valid, role + b);
     const __mmask8 fluid_b = static_cast<__mmask8>(_mm_cmpeq_epi8_mask(kb, fluid_role));
-    __mmask8 m = valid & _mm512_cmp_pd_mask(r2, s2, _CMP_LT_OQ) &
-                 _mm512_cmp_pd_mask(r2, tiny, _CMP_GT_OQ);
+    __mmask8 m =
+        valid & _mm512_cmp_pd_mask(r2, s2, _CMP_LT_OQ) & _mm512_cmp_pd_mask(r2, tiny, _CMP_GT_OQ);
     if constexpr (!Select::kWallSeesWalls) {
       if (!fluid_a) m &= fluid_b;
     }

@@ -36,11 +36,12 @@ namespace swell {
 // One neighbour list per thread, reused across particles and steps (grows, never shrinks).
 using NeighbourLists = std::vector<std::vector<std::uint32_t>>;
 
-// Runs the evaluator over every active particle's neighbours within `support`; returns the
-// maximum of the values finish() returned (0 if none).
+// Runs the evaluator over every active particle's neighbours within `support` (each thread on
+// its own copy of it: evaluators are small values holding parameters and array pointers);
+// returns the maximum of the values finish() returned (0 if none).
 template <int D, class Select, class Evaluator>
 double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double support,
-                     Evaluator& ev, NeighbourLists& lists) {
+                     const Evaluator& ev, NeighbourLists& lists) {
   static_assert(sizeof(Vec<D>) == D * sizeof(double), "positions must be D packed doubles");
   const double support2 = support * support;
   const long ncells = static_cast<long>(grid.num_cells());
@@ -52,13 +53,17 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
 
 #pragma omp parallel reduction(max : run_max)
   {
+    // A private copy: its address never escapes, so the compiler keeps its parameters and
+    // array pointers in registers across the SIMD loop instead of reloading them per pair
+    // (the reduction stores could otherwise alias them): ~6 % on B3D.
+    Evaluator local = ev;
     std::vector<std::uint32_t>& nbv = lists[omp_get_thread_num()];
 #pragma omp for schedule(dynamic, 16)
     for (long c = 0; c < ncells; ++c) {
       const std::uint32_t cb = grid.begin(c), ce = grid.end(c);
       if (cb == ce) continue;
       if (Select::kSkipDryCells && !grid.fluid_near(c)) {  // nothing to gather
-        for (std::uint32_t a = cb; a < ce; ++a) ev.idle(a);
+        for (std::uint32_t a = cb; a < ce; ++a) local.idle(a);
         continue;
       }
       std::array<std::pair<std::uint32_t, std::uint32_t>, (D == 3 ? 9 : 3)> ranges;
@@ -86,11 +91,11 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
         while (k % kPairLanes) nb[k++] = a;
 
         // Pass 2: pair terms in one SIMD loop (gathers, selects instead of branches).
-        const typename Evaluator::Centre ca = ev.centre(a, fluid_a);
+        const typename Evaluator::Centre ca = local.centre(a, fluid_a);
         double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, mx = 0.0;
 #pragma omp simd reduction(+ : s0, s1, s2, s3) reduction(max : mx)
-        for (std::uint32_t j = 0; j < k; ++j) ev.pair(ca, nb[j], s0, s1, s2, s3, mx);
-        run_max = std::max(run_max, ev.finish(a, ca, s0, s1, s2, s3, mx));
+        for (std::uint32_t j = 0; j < k; ++j) local.pair(ca, nb[j], s0, s1, s2, s3, mx);
+        run_max = std::max(run_max, local.finish(a, ca, s0, s1, s2, s3, mx));
       }
     }
   }

@@ -20,8 +20,8 @@ struct DensityDiffusion {
   }
   // One pair's contribution: weight_b (1 for a fluid b, 0 for a wall) times weight_a (above)
   // times drho_ab (r.gradW) / (r^2 + eta^2) V_b.
-  double term(double weight_b, double weight_a, double drho_ab, double r_dot_gradw,
-              double inv_r2e, double vol_b) const {
+  double term(double weight_b, double weight_a, double drho_ab, double r_dot_gradw, double inv_r2e,
+              double vol_b) const {
     return weight_b * weight_a * drho_ab * r_dot_gradw * inv_r2e * vol_b;
   }
 };

@@ -23,7 +23,11 @@
 
 namespace swell {
 
-template <int D, class Kernel, ViscosityModel VM, class Select>
+// kTait7 (artificial viscosity only): the signal speed c_b of the default Tait gamma = 7 is
+// computed in the loop as c0 (rho_b/rho0)^3, three multiplications instead of one more gather
+// per pair (gathers are the loop's most expensive instructions; this keeps B3D's speed). Any
+// other equation of state reads c from the buffer filled by compute_pressure.
+template <int D, class Kernel, ViscosityModel VM, class Select, bool kTait7 = false>
 class WcsphEvaluator {
  public:
   struct Centre {
@@ -41,6 +45,8 @@ class WcsphEvaluator {
         dd_{prm.diffusion != DiffusionModel::None ? prm.delta * prm.h * prm.c0 : 0.0,
             prm.diffusion == DiffusionModel::Fourtakas ? prm.rho0 / (prm.c0 * prm.c0) : 0.0},
         eta2_(prm.eta2()),
+        c0_(prm.c0),
+        inv_rho0_(1.0 / prm.rho0),
         g_(prm.gravity.template head<D>()),
         P_(ps.pos.data()->data()),
         U_(ps.vel.data()->data()),
@@ -61,7 +67,12 @@ class WcsphEvaluator {
     c.v2 = D == 3 ? U_[a * D + D - 1] : 0.0;
     c.rho = rho_[a];
     c.prs = prs_[a];
-    c.cs = cs_[a];
+    if constexpr (kTait7) {
+      const double ra = c.rho * inv_rho0_;
+      c.cs = c0_ * ra * ra * ra;
+    } else {
+      c.cs = cs_[a];
+    }
     c.dd_weight = dd_.weight(fluid_a || Select::kWallsDiffuse);
     c.fluid = fluid_a;
     return c;
@@ -70,8 +81,8 @@ class WcsphEvaluator {
   // s0: drho/dt, s1..s3: acceleration, mx: viscous time-step signal. In 2D the third axis is
   // not used and compiles away. Real pairs have r2 > 1e-18 (gather); a padding entry
   // (r_ab = v_ab = 0) gets a finite kernel factor, so every term is exactly zero for it.
-  void pair(const Centre& a, std::uint32_t e, double& drho, double& ac0, double& ac1,
-            double& ac2, double& vdt) const {
+  void pair(const Centre& a, std::uint32_t e, double& drho, double& ac0, double& ac1, double& ac2,
+            double& vdt) const {
     const std::uint32_t b = e & ~kWallBit;
     const double fluid_b = (e & kWallBit) ? 0.0 : 1.0;
     const double r0 = a.x0 - P_[b * D], r1 = a.x1 - P_[b * D + 1];
@@ -79,7 +90,7 @@ class WcsphEvaluator {
     const double w0 = a.v0 - U_[b * D], w1 = a.v1 - U_[b * D + 1];
     const double w2 = D == 3 ? a.v2 - U_[b * D + D - 1] : 0.0;
     const double r2 = r0 * r0 + r1 * r1 + r2c * r2c;
-    const double vr = w0 * r0 + w1 * r1 + w2 * r2c;  // v_ab . r_ab
+    const double vr = w0 * r0 + w1 * r1 + w2 * r2c;                                 // v_ab . r_ab
     const double grx = g_[0] * r0 + g_[1] * r1 + (D == 3 ? g_[D - 1] * r2c : 0.0);  // g . r_ab
     // gradW_ab = r_ab fr
     const double fr = kernel_.fs(std::sqrt(std::max(r2, 1e-18)));
@@ -91,11 +102,19 @@ class WcsphEvaluator {
     const double mu = av_.mu(vr, inv_r2e);
     vdt = vdt > -mu ? vdt : -mu;
     double pterm = a.prs + prs_[b];
-    if constexpr (VM == ViscosityModel::Artificial) pterm += av_.pi(mu, a.cs, cs_[b], a.rho, rho_b);
+    if constexpr (VM == ViscosityModel::Artificial) {
+      double cs_b;
+      if constexpr (kTait7) {
+        const double rb = rho_b * inv_rho0_;
+        cs_b = c0_ * rb * rb * rb;
+      } else {
+        cs_b = cs_[b];
+      }
+      pterm += av_.pi(mu, a.cs, cs_b, a.rho, rho_b);
+    }
     const double fp = -m_b * pterm * fr;
-    const double fv = VM == ViscosityModel::Laminar
-                          ? lam_.factor(m_b, r_dot_gradw, a.rho, rho_b, inv_r2e)
-                          : 0.0;
+    const double fv =
+        VM == ViscosityModel::Laminar ? lam_.factor(m_b, r_dot_gradw, a.rho, rho_b, inv_r2e) : 0.0;
     ac0 += fp * r0 + fv * w0;
     ac1 += fp * r1 + fv * w1;
     ac2 += fp * r2c + fv * w2;
@@ -103,8 +122,8 @@ class WcsphEvaluator {
                      m_b / rho_b);
   }
 
-  double finish(std::uint32_t a, const Centre& c, double drho, double ac0, double ac1,
-                double ac2, double vdt) {
+  double finish(std::uint32_t a, const Centre& c, double drho, double ac0, double ac1, double ac2,
+                double vdt) {
     const double acc[3] = {ac0, ac1, ac2};
     drho_[a] = drho;
     // A wall particle's `ace` is the force per unit mass the fluid exerts on it (no g).
@@ -122,7 +141,7 @@ class WcsphEvaluator {
   ArtificialViscosity av_;
   LaminarViscosity lam_;
   DensityDiffusion dd_;
-  double eta2_;
+  double eta2_, c0_, inv_rho0_;
   Vec<D> g_;
   const double *P_, *U_, *rho_, *mass_, *prs_, *cs_;
   double* drho_;

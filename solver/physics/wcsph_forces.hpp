@@ -1,7 +1,9 @@
 // One force evaluation of the WCSPH equations: the EoS per particle (P/rho^2 and c), then the
 // pair driver with the WCSPH evaluator. The kernel and the viscosity model are chosen here at
 // run time (with_kernel), the selection policy by the caller (the boundary model, bc/): the
-// three compile-time switches of the pair loop.
+// three compile-time switches of the pair loop. The viscosity switch has three values:
+// artificial with the Tait gamma = 7 signal speed computed in the loop, artificial with c from
+// the EoS buffer (any other gamma), laminar.
 #pragma once
 
 #include <algorithm>
@@ -64,7 +66,10 @@ void compute_forces(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Sol
     auto run = [&](auto ev) {
       f.visc_dt_max = for_each_pair<D, Select>(ps, grid, kernel.support(), ev, f.neighbours);
     };
-    if (prm.viscosity == ViscosityModel::Artificial)
+    if (prm.viscosity == ViscosityModel::Artificial && prm.gamma == 7.0)
+      run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select, true>(
+          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
+    else if (prm.viscosity == ViscosityModel::Artificial)
       run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select>(
           ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
     else

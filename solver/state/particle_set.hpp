@@ -30,8 +30,8 @@ namespace swell {
 enum class FieldClass : std::uint8_t { State, Integrator, Constant };
 
 struct FieldInfo {
-  int index;             // position in the table
-  const char* name;      // member name, also the dataset name in checkpoints
+  int index;         // position in the table
+  const char* name;  // member name, also the dataset name in checkpoints
   FieldClass cls;
   const char* snapshot;  // dataset name in HDF5 snapshots; nullptr: not written there
   bool optional;         // empty unless enable()d (e.g. pos_ref: only runs with moving bodies)
@@ -64,15 +64,20 @@ struct ParticleSet {
 
   std::size_t n_active = 0;
 
-  std::size_t size() const { return n_active; }
-  std::size_t total() const { return pos.size(); }
+  std::size_t size() const {
+    return n_active;
+  }
+  std::size_t total() const {
+    return pos.size();
+  }
 
   // Calls fn(const FieldInfo&, array) for every field of the table, in table order, enabled
   // or not (a disabled optional field is an empty array).
   template <class Fn>
   void for_each_field(Fn&& fn) {
     int index = 0;
-#define SWELL_VISIT_FIELD(NAME, TYPE, CLS, SNAP, OPT) fn(FieldInfo{index++, #NAME, CLS, SNAP, OPT}, NAME);
+#define SWELL_VISIT_FIELD(NAME, TYPE, CLS, SNAP, OPT) \
+  fn(FieldInfo{index++, #NAME, CLS, SNAP, OPT}, NAME);
     SWELL_PARTICLE_FIELDS(SWELL_VISIT_FIELD)
   }
   template <class Fn>
@@ -90,7 +95,9 @@ struct ParticleSet {
   }();
 
   // Whether a field is in use (always, unless it is optional and not enabled).
-  bool enabled(const FieldInfo& f) const { return !f.optional || enabled_[f.index]; }
+  bool enabled(const FieldInfo& f) const {
+    return !f.optional || enabled_[f.index];
+  }
   // Turns an optional field on for every particle: a copy of `init` (same element type and
   // size), e.g. enable("pos_ref", pos). Throws for an unknown name or a mismatch.
   template <class T>
@@ -112,7 +119,9 @@ struct ParticleSet {
     if (!found) throw std::invalid_argument("ParticleSet::enable: no field '" + name + "'");
   }
   // Marks a field enabled whose array was filled from outside (checkpoint reader).
-  void mark_enabled(const FieldInfo& f) { enabled_[f.index] = true; }
+  void mark_enabled(const FieldInfo& f) {
+    enabled_[f.index] = true;
+  }
 
   void reserve(std::size_t n) {
     for_each_field([&](const FieldInfo& f, auto& a) {
@@ -182,8 +191,8 @@ struct ParticleSet {
   static constexpr int kSlots = 2;
   template <class T>
   using Slots = std::array<std::vector<T>, kSlots>;
-  using Scratch = std::tuple<Slots<V>, Slots<double>, Slots<Role>, Slots<std::uint16_t>,
-                             Slots<std::uint32_t>>;
+  using Scratch =
+      std::tuple<Slots<V>, Slots<double>, Slots<Role>, Slots<std::uint16_t>, Slots<std::uint32_t>>;
   template <class T>
   static constexpr int type_slot() {
     if constexpr (std::is_same_v<T, V>) return 0;

@@ -16,9 +16,15 @@ using Vec = Eigen::Matrix<double, D, 1>;
 // The values are stored in checkpoints and in snapshots (dataset "type"): never renumber them.
 enum class Role : std::uint8_t { Fluid = 0, FixedWall = 1, MovingWall = 2, Floating = 3 };
 
-inline constexpr bool is_fluid(Role r) { return r == Role::Fluid; }
-inline constexpr bool is_wall(Role r) { return r != Role::Fluid; }
-inline constexpr bool is_valid_role(std::uint8_t r) { return r <= 3; }
+inline constexpr bool is_fluid(Role r) {
+  return r == Role::Fluid;
+}
+inline constexpr bool is_wall(Role r) {
+  return r != Role::Fluid;
+}
+inline constexpr bool is_valid_role(std::uint8_t r) {
+  return r <= 3;
+}
 inline const char* role_name(Role r) {
   switch (r) {
     case Role::Fluid:

@@ -23,8 +23,8 @@ namespace swell {
 template <int D>
 struct StepState {
   ParticleSet<D>& particles;
-  const CellGrid<D>& grid;     // sorted for the current positions in the force stages
-  ForceBuffers<D>& forces;     // rates of the last evaluation
+  const CellGrid<D>& grid;  // sorted for the current positions in the force stages
+  ForceBuffers<D>& forces;  // rates of the last evaluation
   const SolverParams& params;
   const TaitEos& eos;
   double time;  // the time the particles are at (the substep time in prescribe)
