@@ -67,7 +67,9 @@ class WcsphEvaluator {
     c.v2 = D == 3 ? U_[a * D + D - 1] : 0.0;
     c.rho = rho_[a];
     c.prs = prs_[a];
-    if constexpr (kTait7) {
+    if constexpr (VM != ViscosityModel::Artificial) {
+      c.cs = 0.0;  // not used (and the buffer is not filled)
+    } else if constexpr (kTait7) {
       const double ra = c.rho * inv_rho0_;
       c.cs = c0_ * ra * ra * ra;
     } else {

@@ -27,7 +27,7 @@ struct ForceBuffers {
   std::vector<Vec<D>> ace;
   std::vector<double> drho;
   std::vector<double> prs;    // P_a / rho_a^2
-  std::vector<double> cs;     // sound speed c_a
+  std::vector<double> cs;     // sound speed c_a, only where the pair loop reads it
   std::vector<double> press;  // P_a, filled only on request (Simulation::pressure(), output)
   double visc_dt_max = 0.0;   // max over pairs of h |v_ab.r_ab| / (r^2 + eta^2), for dt
   double cs_max = 0.0;
@@ -37,20 +37,22 @@ struct ForceBuffers {
     ace.resize(n);
     drho.resize(n);
     prs.resize(n);
-    cs.resize(n);
   }
 };
 
-// P/rho^2 and c of every active particle, and the largest sound speed (for dt).
+// P/rho^2 of every active particle, c too where the loop reads it (with_cs), and the largest
+// sound speed (for dt).
 template <int D>
-void compute_pressure(const ParticleSet<D>& ps, const TaitEos& eos, ForceBuffers<D>& out) {
+void compute_pressure(const ParticleSet<D>& ps, const TaitEos& eos, ForceBuffers<D>& out,
+                      bool with_cs = true) {
   const long n = static_cast<long>(ps.size());
   double rho_max = 0.0;
+  if (with_cs && out.cs.size() < ps.total()) out.cs.resize(ps.total());  // once
 #pragma omp parallel for schedule(static) reduction(max : rho_max)
   for (long i = 0; i < n; ++i) {
     const double rho = ps.rho[i];
     out.prs[i] = eos.pressure(rho) / (rho * rho);
-    out.cs[i] = eos.sound_speed(rho);
+    if (with_cs) out.cs[i] = eos.sound_speed(rho);
     rho_max = std::max(rho_max, rho);
   }
   out.cs_max = eos.sound_speed(rho_max);  // c grows with rho
@@ -60,13 +62,15 @@ void compute_pressure(const ParticleSet<D>& ps, const TaitEos& eos, ForceBuffers
 template <int D, class Select>
 void compute_forces(const ParticleSet<D>& ps, const CellGrid<D>& grid, const SolverParams& prm,
                     const TaitEos& eos, ForceBuffers<D>& f) {
-  compute_pressure(ps, eos, f);
+  // The buffer is read only by artificial viscosity with a Tait exponent other than 7.
+  const bool tait7 = prm.gamma == 7.0;
+  compute_pressure(ps, eos, f, prm.viscosity == ViscosityModel::Artificial && !tait7);
   with_kernel<D>(prm.kernel, prm.h, [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
     auto run = [&](auto ev) {
       f.visc_dt_max = for_each_pair<D, Select>(ps, grid, kernel.support(), ev, f.neighbours);
     };
-    if (prm.viscosity == ViscosityModel::Artificial && prm.gamma == 7.0)
+    if (prm.viscosity == ViscosityModel::Artificial && tait7)
       run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select, true>(
           ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
     else if (prm.viscosity == ViscosityModel::Artificial)
