@@ -63,7 +63,7 @@ void clock_fields(C& c, Fn&& fn) {
   fn("excluded_density_out_of_range", c.excluded.density_out_of_range);
 }
 
-// Every ParticleSet array, as datasets of /particles in a checkpoint (cf. for_each_array).
+// Every enabled field of the ParticleSet table (for_each_field), as datasets of /particles.
 template <class PS, class Fn>
 void checkpoint_arrays(PS& ps, Fn&& fn) {
   // Every enabled field of the table, under its own name (optional fields only when in use).

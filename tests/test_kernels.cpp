@@ -145,7 +145,7 @@ TYPED_TEST(KernelTest, CompactSupportPositiveNonIncreasing) {
     }
     // At r = R exactly the kernels test q = r * (1/h) >= kSupport. For some h (0.37 here) that
     // product rounds one ulp below kSupport, and the kernel returns its value just inside the
-    // support (~1e-79 for the quintic, a e^-9 for the truncated Gaussian). interact() never sees
+    // support (~1e-79 for the quintic, a e^-9 for the truncated Gaussian). The pair loop never sees
     // this since it skips r^2 >= support^2, so the exact-zero check is only made where q rounds to
     // kSupport; the rounding case is reported, not asserted.
     if (R * k.inv_h >= TypeParam::kSupport) {
