@@ -45,6 +45,9 @@ std::vector<BenchCase> builtin_cases() {
       {"b2d", "b2d.yaml", 0.01, {1.25e6, 2.10e6, 6320, 21001, 10.0}},
       {"b3d", "b3d.yaml", 0.02, {0.25e6, 0.47e6, 1503, 17446, 10.0}},
       {"b3d_fine", "b3d.yaml", 0.015, {0.0, 0.38e6, 0, 37896, 13.0}},
+      // The same cases with mDBC walls (bc/mdbc): the cost of the ghost nodes (no reference).
+      {"b2d_mdbc", "b2d_mdbc.yaml", 0.01, {}},
+      {"b3d_mdbc", "b3d_mdbc.yaml", 0.02, {}},
   };
 }
 
@@ -169,13 +172,13 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
 
   std::vector<BenchCase> cases;
   const auto all = builtin_cases();
-  if (opt.cases.empty() && !opt.sweep) cases = all;
+  if (opt.cases.empty() && !opt.sweep) cases.assign(all.begin(), all.begin() + 3);
   for (const auto& name : opt.cases) {
     const auto it =
         std::find_if(all.begin(), all.end(), [&](const auto& c) { return c.name == name; });
     if (it == all.end())
       throw std::invalid_argument("bench: unknown case '" + name +
-                                  "' (expected b2d, b3d or b3d_fine)");
+                                  "' (expected b2d, b3d, b3d_fine, b2d_mdbc or b3d_mdbc)");
     cases.push_back(*it);
   }
 

@@ -5,6 +5,7 @@
 // the fluid through the pair loop like any particle velocity. A pure function of time, so a
 // restart moves the bodies exactly as the uninterrupted run; the checkpoint keeps each body's
 // pose at the last prescribed time, and a restart from a case whose motion differs is refused.
+// With mDBC the wall normals turn with the body (from their body-frame copy, normal_ref).
 #pragma once
 
 #include <cmath>
@@ -44,6 +45,8 @@ class MovingBodies final : public StepHook<D> {
       if (is_wall(ps.role[i]) && b < laws.size() && laws[b].moves()) ps.role[i] = Role::MovingWall;
     }
     ps.enable("pos_ref", ps.pos);
+    // mDBC normals turn with their body: keep them in the body frame too.
+    if (ps.normal.size() == ps.total()) ps.enable("normal_ref", ps.normal);
     MovingBodies<D> m(laws);
     m.place_all(ps, 0.0);
   }
@@ -103,6 +106,7 @@ class MovingBodies final : public StepHook<D> {
     }
     t_last_ = t;
     const long n = static_cast<long>(ps.size());
+    const bool turn_normals = !ps.normal_ref.empty();
 #pragma omp parallel for schedule(static) if (n > ParticleSet <D>::kParallelMin)
     for (long i = 0; i < n; ++i) {
       if (ps.role[i] != Role::MovingWall) continue;
@@ -112,6 +116,11 @@ class MovingBodies final : public StepHook<D> {
       placements_[b].apply(ref, x, v);
       ps.pos[i] = x.template head<D>();
       ps.vel[i] = v.template head<D>();
+      if (turn_normals) {
+        Eigen::Vector3d nref = Eigen::Vector3d::Zero();
+        nref.template head<D>() = ps.normal_ref[i];
+        ps.normal[i] = (placements_[b].rotation * nref).template head<D>();
+      }
     }
   }
 

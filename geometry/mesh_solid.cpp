@@ -393,6 +393,11 @@ double MeshSolid::signed_distance_within(const Eigen::Vector3d& p, double max_di
   return contains(p) ? -d : d;
 }
 
+Eigen::Vector3d MeshSolid::closest_surface_point(const Eigen::Vector3d& p) const {
+  const Point x = impl_->tree.closest_point(to_point(p));
+  return {x.x(), x.y(), x.z()};
+}
+
 double MeshSolid::signed_distance_cgal(const Eigen::Vector3d& p) const {
   const double d = std::sqrt(impl_->tree.squared_distance(to_point(p)));
   return contains(p) ? -d : d;

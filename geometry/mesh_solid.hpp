@@ -59,6 +59,8 @@ class MeshSolid : public Shape {
   // signed_distance() through CGAL's AABB_tree::squared_distance() (reference for tests).
   double signed_distance_cgal(const Eigen::Vector3d& p) const;
   bool contains(const Eigen::Vector3d& p) const override;
+  // The nearest point of the mesh surface (AABB tree closest-point query).
+  Eigen::Vector3d closest_surface_point(const Eigen::Vector3d& p) const override;
   Aabb bounds() const override;
   double volume() const override;
   std::string describe() const override;

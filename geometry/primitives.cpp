@@ -1,10 +1,12 @@
 #include "geometry/primitives.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace swell::geometry {
 namespace {
@@ -29,12 +31,34 @@ void check_radius(double r, const char* what) {
     throw std::invalid_argument(std::string(what) + ": radius must be positive");
 }
 
-double segment_distance2(const Eigen::Vector2d& q, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
+Eigen::Vector2d segment_closest(const Eigen::Vector2d& q, const Eigen::Vector2d& a,
+                                const Eigen::Vector2d& b) {
   const Eigen::Vector2d ab = b - a, aq = q - a;
   const double len2 = ab.squaredNorm();
   const double t = len2 > 0.0 ? std::clamp(aq.dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (aq - t * ab).squaredNorm();
+  return a + t * ab;
+}
+
+// The nearest of the candidate surface points of a CSG result that lie on its surface
+// (|signed distance| within a small tolerance of the candidate's size), else the nearest
+// candidate.
+Eigen::Vector3d nearest_on_surface(const Eigen::Vector3d& p, const std::vector<Eigen::Vector3d>& c,
+                                   const Shape& result) {
+  Eigen::Vector3d best = c.front(), best_any = c.front();
+  double best2 = std::numeric_limits<double>::infinity(), any2 = best2;
+  for (const auto& x : c) {
+    const double e2 = (x - p).squaredNorm();
+    if (e2 < any2) {
+      any2 = e2;
+      best_any = x;
+    }
+    const double tol = 1e-9 * (1.0 + x.cwiseAbs().maxCoeff());
+    if (e2 < best2 && std::abs(result.signed_distance(x)) <= tol) {
+      best2 = e2;
+      best = x;
+    }
+  }
+  return std::isfinite(best2) ? best : best_any;
 }
 
 // Even-odd crossing test of q against one closed loop.
@@ -77,6 +101,32 @@ BoxShape::BoxShape(const Eigen::Vector3d& min, const Eigen::Vector3d& max, int d
 
 double BoxShape::signed_distance(const Eigen::Vector3d& p) const {
   return box_.signed_distance(p, dim_);
+}
+
+Eigen::Vector3d BoxShape::closest_point_on_faces(const Eigen::Vector3d& p, unsigned open) const {
+  // The nearest point of each face (a rectangle: p clamped to the box, pinned to the face's
+  // plane), the nearest of those.
+  Eigen::Vector3d clamped = p;
+  for (int d = 0; d < dim_; ++d) clamped[d] = std::clamp(p[d], box_.min[d], box_.max[d]);
+  if (dim_ == 2) clamped.z() = 0.0;
+  Eigen::Vector3d best = clamped;
+  double best2 = std::numeric_limits<double>::infinity();
+  for (int d = 0; d < dim_; ++d)
+    for (int side = 0; side < 2; ++side) {
+      if (open & (1u << (2 * d + side))) continue;
+      Eigen::Vector3d q = clamped;
+      q[d] = side ? box_.max[d] : box_.min[d];
+      const double e2 = (q - p).head(dim_).squaredNorm();
+      if (e2 < best2) {
+        best2 = e2;
+        best = q;
+      }
+    }
+  return best;
+}
+
+Eigen::Vector3d BoxShape::closest_surface_point(const Eigen::Vector3d& p) const {
+  return closest_point_on_faces(p, 0u);
 }
 
 bool BoxShape::contains(const Eigen::Vector3d& p) const {
@@ -128,6 +178,30 @@ double CylinderShape::signed_distance(const Eigen::Vector3d& p) const {
   return std::min(std::max(dx, dy), 0.0) + out;
 }
 
+Eigen::Vector3d CylinderShape::closest_surface_point(const Eigen::Vector3d& p) const {
+  if (dim_ == 2) {
+    const Eigen::Vector2d r = p.head<2>() - p1_.head<2>();
+    const double n = r.norm();
+    const Eigen::Vector2d u = n > 0.0 ? Eigen::Vector2d(r / n) : Eigen::Vector2d::UnitX();
+    const Eigen::Vector2d q = p1_.head<2>() + radius_ * u;
+    return {q.x(), q.y(), 0.0};
+  }
+  // Candidates: the side (radial projection, axial position clamped) and the two caps (the
+  // point projected on the cap's plane, radius clamped to R); the nearest wins.
+  const Eigen::Vector3d r = p - p1_;
+  const double t = r.dot(axis_);
+  const Eigen::Vector3d radial = r - t * axis_;
+  const double rho = radial.norm();
+  Eigen::Vector3d u = rho > 0.0 ? Eigen::Vector3d(radial / rho) : axis_.unitOrthogonal();
+  const Eigen::Vector3d side = p1_ + std::clamp(t, 0.0, length_) * axis_ + radius_ * u;
+  const double rc = std::min(rho, radius_);
+  const Eigen::Vector3d cap1 = p1_ + rc * u, cap2 = p1_ + length_ * axis_ + rc * u;
+  Eigen::Vector3d best = side;
+  for (const Eigen::Vector3d& c : {cap1, cap2})
+    if ((c - p).squaredNorm() < (best - p).squaredNorm()) best = c;
+  return best;
+}
+
 Aabb CylinderShape::bounds() const {
   if (dim_ == 2) {
     const Eigen::Vector3d e(radius_, radius_, 0.0);
@@ -167,6 +241,14 @@ SphereShape::SphereShape(const Eigen::Vector3d& center, double radius, int dim)
 double SphereShape::signed_distance(const Eigen::Vector3d& p) const {
   if (dim_ == 2) return (p.head<2>() - center_.head<2>()).norm() - radius_;
   return (p - center_).norm() - radius_;
+}
+
+Eigen::Vector3d SphereShape::closest_surface_point(const Eigen::Vector3d& p) const {
+  Eigen::Vector3d r = p - center_;
+  if (dim_ == 2) r.z() = 0.0;
+  const double n = r.norm();
+  const Eigen::Vector3d u = n > 0.0 ? Eigen::Vector3d(r / n) : Eigen::Vector3d::UnitX();
+  return center_ + radius_ * u;
 }
 
 Aabb SphereShape::bounds() const {
@@ -286,15 +368,25 @@ bool PolygonShape::inside(const Eigen::Vector2d& q) const {
 }
 
 double PolygonShape::unsigned_distance(const Eigen::Vector2d& q) const {
+  return (nearest_edge_point(q) - q).norm();
+}
+
+Eigen::Vector2d PolygonShape::nearest_edge_point(const Eigen::Vector2d& q) const {
   const int cx = std::clamp(static_cast<int>(std::floor((q.x() - lo_.x()) / cell_)), 0, nx_ - 1);
   const int cy = std::clamp(static_cast<int>(std::floor((q.y() - lo_.y()) / cell_)), 0, ny_ - 1);
   double best2 = std::numeric_limits<double>::infinity();
+  Eigen::Vector2d best = q;
   auto visit = [&](int ix, int iy) {
     if (ix < 0 || ix >= nx_ || iy < 0 || iy >= ny_) return;
     const std::size_t c = static_cast<std::size_t>(iy) * nx_ + ix;
     for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
       const Edge& e = edges_[static_cast<std::size_t>(cell_edges_[static_cast<std::size_t>(k)])];
-      best2 = std::min(best2, segment_distance2(q, e.a, e.b));
+      const Eigen::Vector2d x = segment_closest(q, e.a, e.b);
+      const double e2 = (x - q).squaredNorm();
+      if (e2 < best2) {
+        best2 = e2;
+        best = x;
+      }
     }
   };
   // Rings of cells around q's (clamped) cell. A cell of ring k + 1 lies at least k cells
@@ -311,7 +403,12 @@ double PolygonShape::unsigned_distance(const Eigen::Vector2d& q) const {
     }
     if (best2 <= (k * cell_) * (k * cell_)) break;
   }
-  return std::sqrt(best2);
+  return best;
+}
+
+Eigen::Vector3d PolygonShape::closest_surface_point(const Eigen::Vector3d& p) const {
+  const Eigen::Vector2d x = nearest_edge_point(p.head<2>());
+  return {x.x(), x.y(), 0.0};
 }
 
 double PolygonShape::signed_distance(const Eigen::Vector3d& p) const {
@@ -353,6 +450,13 @@ double UnionShape::signed_distance(const Eigen::Vector3d& p) const {
   return d;
 }
 
+Eigen::Vector3d UnionShape::closest_surface_point(const Eigen::Vector3d& p) const {
+  std::vector<Eigen::Vector3d> c;
+  c.reserve(children_.size());
+  for (const auto& ch : children_) c.push_back(ch->closest_surface_point(p));
+  return nearest_on_surface(p, c, *this);
+}
+
 bool UnionShape::contains(const Eigen::Vector3d& p) const {
   for (const auto& c : children_) {
     const Aabb b = c->bounds();
@@ -389,6 +493,14 @@ double DifferenceShape::signed_distance(const Eigen::Vector3d& p) const {
   double d = base_->signed_distance(p);
   for (const auto& c : cut_) d = std::max(d, -c->signed_distance(p));
   return d;
+}
+
+Eigen::Vector3d DifferenceShape::closest_surface_point(const Eigen::Vector3d& p) const {
+  std::vector<Eigen::Vector3d> c;
+  c.reserve(cut_.size() + 1);
+  c.push_back(base_->closest_surface_point(p));
+  for (const auto& ch : cut_) c.push_back(ch->closest_surface_point(p));
+  return nearest_on_surface(p, c, *this);
 }
 
 bool DifferenceShape::contains(const Eigen::Vector3d& p) const {

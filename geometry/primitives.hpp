@@ -22,11 +22,15 @@ class BoxShape : public Shape {
  public:
   BoxShape(const Eigen::Vector3d& min, const Eigen::Vector3d& max, int dim);
   double signed_distance(const Eigen::Vector3d& p) const override;
+  Eigen::Vector3d closest_surface_point(const Eigen::Vector3d& p) const override;
   bool contains(const Eigen::Vector3d& p) const override;
   Aabb bounds() const override;
   double volume() const override;
   std::string describe() const override;
   const Box& box() const { return box_; }
+  // The nearest point on the faces not listed in `open` (bit 2 d: the min face of axis d,
+  // bit 2 d + 1: the max face), e.g. the walls of a tank with an open top.
+  Eigen::Vector3d closest_point_on_faces(const Eigen::Vector3d& p, unsigned open) const;
   int dim() const { return dim_; }
 
  private:
@@ -40,6 +44,7 @@ class CylinderShape : public Shape {
  public:
   CylinderShape(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2, double radius, int dim);
   double signed_distance(const Eigen::Vector3d& p) const override;
+  Eigen::Vector3d closest_surface_point(const Eigen::Vector3d& p) const override;
   Aabb bounds() const override;
   double volume() const override;
   std::string describe() const override;
@@ -55,6 +60,7 @@ class SphereShape : public Shape {
  public:
   SphereShape(const Eigen::Vector3d& center, double radius, int dim);
   double signed_distance(const Eigen::Vector3d& p) const override;
+  Eigen::Vector3d closest_surface_point(const Eigen::Vector3d& p) const override;
   Aabb bounds() const override;
   double volume() const override;
   std::string describe() const override;
@@ -75,6 +81,7 @@ class PolygonShape : public Shape {
   explicit PolygonShape(std::vector<std::vector<Eigen::Vector2d>> loops,
                         std::string description = "polygon");
   double signed_distance(const Eigen::Vector3d& p) const override;
+  Eigen::Vector3d closest_surface_point(const Eigen::Vector3d& p) const override;
   bool contains(const Eigen::Vector3d& p) const override;
   Aabb bounds() const override;
   // Shoelace area with the even-odd rule for non-crossing loops: each loop counts + or -
@@ -85,6 +92,7 @@ class PolygonShape : public Shape {
 
  private:
   double unsigned_distance(const Eigen::Vector2d& q) const;
+  Eigen::Vector2d nearest_edge_point(const Eigen::Vector2d& q) const;
   bool inside(const Eigen::Vector2d& q) const;
 
   struct Edge {
@@ -111,6 +119,7 @@ class UnionShape : public Shape {
  public:
   explicit UnionShape(std::vector<ShapePtr> children);
   double signed_distance(const Eigen::Vector3d& p) const override;
+  Eigen::Vector3d closest_surface_point(const Eigen::Vector3d& p) const override;
   bool contains(const Eigen::Vector3d& p) const override;
   Aabb bounds() const override { return bounds_; }
   double volume() const override;
@@ -127,6 +136,7 @@ class DifferenceShape : public Shape {
  public:
   DifferenceShape(ShapePtr base, std::vector<ShapePtr> cut);
   double signed_distance(const Eigen::Vector3d& p) const override;
+  Eigen::Vector3d closest_surface_point(const Eigen::Vector3d& p) const override;
   bool contains(const Eigen::Vector3d& p) const override;
   Aabb bounds() const override { return base_->bounds(); }
   double volume() const override;

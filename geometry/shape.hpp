@@ -35,6 +35,12 @@ class Shape {
   // surface of one operand). Wall layers and fluid gaps only use it within a few dp.
   virtual double signed_distance(const Eigen::Vector3d& p) const = 0;
   virtual bool contains(const Eigen::Vector3d& p) const { return signed_distance(p) < 0.0; }
+  // The point of the surface nearest to p in the Euclidean norm (for 2D shapes, in the z = 0
+  // plane). Used for mDBC's wall normals and ghost nodes (geometry/wall_normals.hpp): exact
+  // for primitives and meshes; for CSG the nearest operand point that lies on the result's
+  // surface (exact unless the result's surface near p is a part of an operand's surface that
+  // is not that operand's nearest).
+  virtual Eigen::Vector3d closest_surface_point(const Eigen::Vector3d& p) const = 0;
   // Bounding box of the shape (for 2D shapes, z of both corners is 0).
   virtual Aabb bounds() const = 0;
   // Exact volume (area in 2D) where known, NaN otherwise.

@@ -194,6 +194,7 @@ class CaseReader : private NodeReader {
   void read_physics(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_viscosity(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_diffusion(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_boundary(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_density_bounds(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_time(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_domain(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
@@ -250,7 +251,7 @@ void CaseReader::read_physics(const YAML::Node& node, const std::string& path,
                               CaseSpec& spec) const {
   expect_map(node, path,
              {"rho0", "gravity", "coefsound", "coefh", "hswl", "kernel", "viscosity",
-              "density_diffusion", "density_bounds"});
+              "density_diffusion", "density_bounds", "boundary"});
   const auto positive = [](double v) { return v > 0.0; };
   if (auto v = find(node, "rho0")) {
     spec.rho0 = number_if(*v, child(path, "rho0"), positive, "a number > 0");
@@ -274,6 +275,29 @@ void CaseReader::read_physics(const YAML::Node& node, const std::string& path,
   }
   if (auto v = find(node, "density_bounds")) {
     read_density_bounds(*v, child(path, "density_bounds"), spec);
+  }
+  if (auto v = find(node, "boundary")) read_boundary(*v, child(path, "boundary"), spec);
+}
+
+// `boundary: {model: dbc}` or `{model: mdbc, slip: wall|noslip|freeslip, det_min: 1e-3}`.
+void CaseReader::read_boundary(const YAML::Node& node, const std::string& path,
+                               CaseSpec& spec) const {
+  expect(node.IsMap(), node, path, "a map such as {model: mdbc, slip: noslip}");
+  if (auto v = find(node, "model")) {
+    spec.boundary = model(*v, child(path, "model"), kBoundaryTypes, boundary_name);
+  }
+  if (spec.boundary == BoundaryType::Dbc) {
+    check_keys(node, path, {"model"}, " for model dbc");
+    return;
+  }
+  check_keys(node, path, {"model", "slip", "det_min"}, " for model mdbc");
+  if (auto v = find(node, "slip")) {
+    spec.mdbc_slip = model(*v, child(path, "slip"), kMdbcSlips, mdbc_slip_name);
+  }
+  if (auto v = find(node, "det_min")) {
+    spec.mdbc_det_min = number_if(
+        *v, child(path, "det_min"), [](double d) { return d > 0.0 && d < 1.0; },
+        "a number in (0, 1)");
   }
 }
 

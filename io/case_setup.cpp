@@ -8,8 +8,10 @@
 #include <string>
 
 #include "bc/dbc.hpp"
+#include "bc/mdbc.hpp"
 #include "bc/moving_bodies.hpp"
 #include "geometry/lattice_fill.hpp"
+#include "geometry/wall_normals.hpp"
 #include "io/case_file.hpp"
 #include "io/case_geometry.hpp"
 
@@ -47,6 +49,9 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   p.cfl = spec.cfl;
   p.rho_min_factor = spec.rho_min_factor;
   p.rho_max_factor = spec.rho_max_factor;
+  p.boundary = spec.boundary;
+  p.mdbc_slip = spec.mdbc_slip;
+  p.mdbc_det_min = spec.mdbc_det_min;
 
   // Motion laws (checked here: a bad CSV series or spec is a case error at the body's line).
   s.motions.resize(spec.bodies.size());
@@ -73,6 +78,27 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     for (const auto& x : fb.points)
       s.particles.add(x.template head<D>(), Vec<D>::Zero(), spec.rho0, mass,
                       fluid ? Role::Fluid : Role::FixedWall, static_cast<std::uint16_t>(b));
+  }
+
+  // mDBC: each wall particle's vector to its wall surface, from its body's geometry.
+  if (spec.boundary == BoundaryType::Mdbc) {
+    std::vector<Vec<D>> normals;
+    normals.reserve(total);
+    for (std::size_t b = 0; b < filled.size(); ++b) {
+      const auto& fb = filled[b];
+      if (fb.report.fluid) {
+        normals.resize(normals.size() + fb.points.size(), Vec<D>::Zero());
+        continue;
+      }
+      std::vector<Eigen::Vector3d> n;
+      try {
+        n = geometry::wall_normals(geo[b], fb.points, fo);
+      } catch (const std::invalid_argument& e) {
+        throw CaseError(spec.file, spec.bodies[b].line, e.what());
+      }
+      for (const auto& v : n) normals.push_back(v.template head<D>());
+    }
+    s.particles.enable("normal", normals);
   }
 
   // Moving bodies' particles become moving walls, placed at their pose at t = 0.
@@ -136,7 +162,11 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
   typename Simulation<D>::Hooks hooks;
   if (MovingBodies<D>::any_moves(setup.motions))
     hooks.push_back(std::make_unique<MovingBodies<D>>(setup.motions));
-  return Simulation<D>(setup.params, std::move(particles), make_dbc<D>(), std::move(hooks));
+  std::unique_ptr<BoundaryModel<D>> wall =
+      setup.params.boundary == BoundaryType::Mdbc
+          ? make_mdbc<D>(setup.params.mdbc_slip, setup.params.mdbc_det_min)
+          : make_dbc<D>();
+  return Simulation<D>(setup.params, std::move(particles), std::move(wall), std::move(hooks));
 }
 
 template Simulation<2> make_simulation<2>(const CaseSetup<2>&, ParticleSet<2>);

@@ -98,6 +98,10 @@ struct CaseSpec {
   DiffusionModel diffusion_model = DiffusionModel::Fourtakas;  // fourtakas | molteni | none
   double delta = 0.1;
   double rho_min_factor = 0.7, rho_max_factor = 1.3;  // fluid density bounds before exclusion
+  // Wall model: dbc | mdbc (bc/), and mDBC's slip mode and Shepard-fallback threshold.
+  BoundaryType boundary = BoundaryType::Dbc;
+  MdbcSlip mdbc_slip = MdbcSlip::Wall;
+  double mdbc_det_min = 1e-3;
 
   // time
   double t_end = 0.0;

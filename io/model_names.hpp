@@ -19,6 +19,8 @@ inline constexpr std::array kViscosityModels{ViscosityModel::Artificial, Viscosi
 inline constexpr std::array kDiffusionModels{
     DiffusionModel::Fourtakas, DiffusionModel::MolteniColagrossi, DiffusionModel::None};
 inline constexpr std::array kIntegratorTypes{IntegratorType::Symplectic, IntegratorType::Verlet};
+inline constexpr std::array kBoundaryTypes{BoundaryType::Dbc, BoundaryType::Mdbc};
+inline constexpr std::array kMdbcSlips{MdbcSlip::Wall, MdbcSlip::NoSlip, MdbcSlip::FreeSlip};
 
 // The kernel type's own name (its kName: wendland, cubic, quintic, gaussian), the name
 // kernel_from_name() reads back.
@@ -57,6 +59,28 @@ inline const char* integrator_name(IntegratorType t) {
       return "verlet";
   }
   return "integrator";
+}
+
+inline const char* boundary_name(BoundaryType t) {
+  switch (t) {
+    case BoundaryType::Dbc:
+      return "dbc";
+    case BoundaryType::Mdbc:
+      return "mdbc";
+  }
+  return "boundary";
+}
+
+inline const char* mdbc_slip_name(MdbcSlip m) {
+  switch (m) {
+    case MdbcSlip::Wall:
+      return "wall";
+    case MdbcSlip::NoSlip:
+      return "noslip";
+    case MdbcSlip::FreeSlip:
+      return "freeslip";
+  }
+  return "slip";
 }
 
 }  // namespace swell

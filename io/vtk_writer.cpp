@@ -105,6 +105,21 @@ void write_vtp(const std::string& path, const ParticleSet<D>& ps,
   poly->GetPointData()->AddArray(type);
   poly->GetPointData()->AddArray(body);
   poly->GetPointData()->AddArray(id);
+  // mDBC runs: each wall particle's vector to its wall surface (the ghost node is at
+  // pos + 2 normal), so users can check the normals the geometry gave; zero for fluid.
+  if (ps.normal.size() == ps.total()) {
+    vtkNew<vtkFloatArray> normal;
+    normal->SetName("wall_normal");
+    normal->SetNumberOfComponents(3);
+    normal->SetNumberOfTuples(n);
+    for (vtkIdType k = 0; k < n; ++k) {
+      float v[3] = {0.0f, 0.0f, 0.0f};
+      const std::size_t i = sel[static_cast<std::size_t>(k)];
+      for (int d = 0; d < D; ++d) v[d] = static_cast<float>(ps.normal[i][d]);
+      normal->SetTypedTuple(k, v);
+    }
+    poly->GetPointData()->AddArray(normal);
+  }
   if (body_names) {
     vtkNew<vtkStringArray> names;
     names->SetName("body_name");

@@ -10,6 +10,12 @@ namespace swell {
 enum class ViscosityModel { Artificial, Laminar };
 enum class DiffusionModel { None, MolteniColagrossi, Fourtakas };
 enum class IntegratorType { Symplectic, Verlet };
+// The wall model (bc/): dynamic boundary conditions or modified DBC (English et al. 2022).
+enum class BoundaryType { Dbc, Mdbc };
+// mDBC: the velocity a wall particle shows the fluid. Wall: its body's velocity (as DBC and
+// DualSPHysics' default); NoSlip: 2 v_body - v_ghost; FreeSlip: the ghost velocity with its
+// normal component mirrored about the body's.
+enum class MdbcSlip { Wall, NoSlip, FreeSlip };
 
 struct SolverParams {
   double dp = 0.0;
@@ -32,6 +38,11 @@ struct SolverParams {
   double rho_min_factor = 0.7, rho_max_factor = 1.3;
   // A step whose dt falls below this fraction of the first dt is taken as a blow-up.
   double dt_collapse_factor = 1e-3;
+  BoundaryType boundary = BoundaryType::Dbc;
+  MdbcSlip mdbc_slip = MdbcSlip::Wall;
+  // mDBC: below this determinant of the ghost node's correction matrix the first-order
+  // extrapolation is replaced by a Shepard average (DualSPHysics' default, 1e-3).
+  double mdbc_det_min = 1e-3;
   Eigen::Vector3d domain_min = Eigen::Vector3d::Zero(), domain_max = Eigen::Vector3d::Zero();
 
   double eta2() const { return 0.01 * h * h; }

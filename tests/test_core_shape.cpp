@@ -38,6 +38,14 @@ TEST(FieldTable, AFieldFollowsItsParticleThroughSortAndCheckpoint) {
   std::vector<Vec<2>> tag(ps.total());
   for (std::size_t i = 0; i < tag.size(); ++i) tag[i] = Vec<2>(7.0 * i, -3.0 * i);
   ps.enable("pos_ref", tag);
+  // The mDBC normals (and their body-frame copy) are optional fields of the same kind.
+  std::vector<Vec<2>> ntag(ps.total()), nref(ps.total());
+  for (std::size_t i = 0; i < tag.size(); ++i) {
+    ntag[i] = Vec<2>(0.5 * i, 2.0);
+    nref[i] = Vec<2>(-1.0, 0.25 * i);
+  }
+  ps.enable("normal", ntag);
+  ps.enable("normal_ref", nref);
   int enabled = 0;
   ps.for_each_field([&](const FieldInfo& f, const auto&) { enabled += ps.enabled(f); });
   EXPECT_EQ(enabled, ParticleSet<2>::kNumFields);
@@ -50,6 +58,8 @@ TEST(FieldTable, AFieldFollowsItsParticleThroughSortAndCheckpoint) {
     const std::uint32_t id = ps.id[i];
     moved += id != i;
     EXPECT_EQ(ps.pos_ref[i], Vec<2>(7.0 * id, -3.0 * id)) << "pos_ref of particle " << id;
+    EXPECT_EQ(ps.normal[i], Vec<2>(0.5 * id, 2.0)) << "normal of particle " << id;
+    EXPECT_EQ(ps.normal_ref[i], Vec<2>(-1.0, 0.25 * id)) << "normal_ref of particle " << id;
     EXPECT_EQ(ps.rho[i], 1000.0 + id);
     EXPECT_EQ(ps.vel[i], Vec<2>(id, -double(id)));
   }
@@ -61,6 +71,8 @@ TEST(FieldTable, AFieldFollowsItsParticleThroughSortAndCheckpoint) {
   write_checkpoint<2>(ck, ps, SimulationClock{}, {{"x", 1.0}});
   const Checkpoint<2> c = read_checkpoint<2>(ck);
   EXPECT_EQ(c.particles.pos_ref, ps.pos_ref);
+  EXPECT_EQ(c.particles.normal, ps.normal);
+  EXPECT_EQ(c.particles.normal_ref, ps.normal_ref);
   EXPECT_EQ(c.particles.role, ps.role);
   EXPECT_EQ(c.particles.id, ps.id);
   c.particles.for_each_field([&](const FieldInfo& f, const auto& a) {
@@ -72,8 +84,10 @@ TEST(FieldTable, AFieldFollowsItsParticleThroughSortAndCheckpoint) {
   ParticleSet<2> plain;
   plain.add(Vec<2>(0.1, 0.1), Vec<2>::Zero(), 1000.0, 0.1, Role::Fluid, 0);
   EXPECT_TRUE(plain.pos_ref.empty());
+  EXPECT_TRUE(plain.normal.empty());
   write_checkpoint<2>(ck, plain, SimulationClock{}, {});
   EXPECT_TRUE(read_checkpoint<2>(ck).particles.pos_ref.empty());
+  EXPECT_TRUE(read_checkpoint<2>(ck).particles.normal.empty());
 }
 
 // A flap hinged at the bed, rocking +-15 degrees: after one period every particle is back at

@@ -39,20 +39,24 @@ struct FieldInfo {
 
 // The field table. Columns: member, element type, class, snapshot dataset name, optional.
 // Element types must be trivially copyable (they are stored raw in checkpoints).
-#define SWELL_PARTICLE_FIELDS(X)                                                       \
-  X(pos, V, FieldClass::State, "pos", false)                                           \
-  X(vel, V, FieldClass::State, "vel", false)                                           \
-  X(rho, double, FieldClass::State, "rho", false)                                      \
-  /* integrator memory: x^n, v^n, rho^n (symplectic) or v^{n-1}, rho^{n-1} (Verlet) */ \
-  X(pos_prev, V, FieldClass::Integrator, nullptr, false)                               \
-  X(vel_prev, V, FieldClass::Integrator, nullptr, false)                               \
-  X(rho_prev, double, FieldClass::Integrator, nullptr, false)                          \
-  X(mass, double, FieldClass::Constant, "mass", false)                                 \
-  X(role, Role, FieldClass::Constant, "type", false)                                   \
-  X(body, std::uint16_t, FieldClass::Constant, "body", false)                          \
-  X(id, std::uint32_t, FieldClass::Constant, "id", false)                              \
-  /* the body-frame position a moving wall particle's motion law is applied to */      \
-  X(pos_ref, V, FieldClass::Constant, nullptr, true)
+#define SWELL_PARTICLE_FIELDS(X)                                                           \
+  X(pos, V, FieldClass::State, "pos", false)                                               \
+  X(vel, V, FieldClass::State, "vel", false)                                               \
+  X(rho, double, FieldClass::State, "rho", false)                                          \
+  /* integrator memory: x^n, v^n, rho^n (symplectic) or v^{n-1}, rho^{n-1} (Verlet) */     \
+  X(pos_prev, V, FieldClass::Integrator, nullptr, false)                                   \
+  X(vel_prev, V, FieldClass::Integrator, nullptr, false)                                   \
+  X(rho_prev, double, FieldClass::Integrator, nullptr, false)                              \
+  X(mass, double, FieldClass::Constant, "mass", false)                                     \
+  X(role, Role, FieldClass::Constant, "type", false)                                       \
+  X(body, std::uint16_t, FieldClass::Constant, "body", false)                              \
+  X(id, std::uint32_t, FieldClass::Constant, "id", false)                                  \
+  /* the body-frame position a moving wall particle's motion law is applied to */          \
+  X(pos_ref, V, FieldClass::Constant, nullptr, true)                                       \
+  /* mDBC: vector from a wall particle to its wall surface (ghost node: pos + 2 normal) */ \
+  X(normal, V, FieldClass::Constant, "normal", true)                                       \
+  /* mDBC on a moving body: normal in the body frame */                                    \
+  X(normal_ref, V, FieldClass::Constant, nullptr, true)
 
 template <int D>
 struct ParticleSet {
@@ -147,6 +151,8 @@ struct ParticleSet {
     body.back() = body_id;
     id.back() = next_id;
     if (!pos_ref.empty()) pos_ref.back() = x;
+    if (!normal.empty()) normal.back() = V::Zero();
+    if (!normal_ref.empty()) normal_ref.back() = V::Zero();
     n_active = pos.size();
   }
 

@@ -1,0 +1,145 @@
+// Modified dynamic boundary conditions (mDBC; English et al. 2022, Comput. Part. Mech. 9:911-925)
+// as a boundary module. Wall particles keep DBC's role in the pair loop (the fluid sees their
+// pressure and velocity; they see fluid only), but their density no longer comes from the
+// continuity equation: before every force evaluation each wall particle a takes it from its
+// ghost node x_g = x_a + 2 n_a, its mirror image across the wall surface (n_a, the `normal`
+// field, is the vector from the particle to the nearest surface point, geometry/wall_normals):
+//   - at the ghost node, density and its gradient by the first-order consistent interpolation
+//     of the fluid around it: the (D+1) x (D+1) system of Liu & Liu (2006)
+//        sum_b V_b [ W_gb, (x_b - x_g)^T W_gb ; gradW_gb, gradW_gb (x_b - x_g)^T ] [rho; grad rho]
+//          = sum_b m_b [ W_gb ; gradW_gb ],      V_b = m_b / rho_b, gradW at x_g;
+//   - where that matrix is ill-conditioned (det < mdbc_det_min, the fluid covers too little of
+//     the ghost's support, e.g. near the free surface) the Shepard average
+//     sum m_b W / sum V_b W, without gradient;
+//   - no fluid in the ghost's support: rho0;
+//   - the wall particle's density is the extrapolation rho_g + (x_a - x_g) . grad rho_g, never
+//     below rho0 (as DBC's floor: a wall never pulls fluid in).
+// Wall velocity seen by the fluid (MdbcSlip): the body's (default, as DualSPHysics), no-slip
+// 2 v_body - v_g, or free-slip (v_g with its normal component mirrored about the body's), v_g
+// from the same interpolation. The body's velocity is restored after the force stage, so the
+// state and checkpoints only hold the prescribed motion. Walls' continuity rates are set to zero
+// after the forces: their density changes only through the ghost nodes.
+#pragma once
+
+#include <Eigen/Dense>
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "solver/neighbours/cell_grid.hpp"
+#include "solver/neighbours/gather.hpp"
+#include "solver/solver_params.hpp"
+#include "solver/state/particle_set.hpp"
+#include "solver/time/step_hooks.hpp"
+
+namespace swell {
+
+// How a ghost node's value was obtained.
+enum class GhostMode : std::uint8_t { Dry = 0, Shepard = 1, Corrected = 2 };
+
+template <int D>
+struct GhostValue {
+  double rho = 0.0;
+  Vec<D> grad = Vec<D>::Zero();  // density gradient (Corrected only; zero otherwise)
+  Vec<D> vel = Vec<D>::Zero();   // interpolated fluid velocity (if asked for)
+  double det = 0.0;              // determinant of the correction matrix
+  GhostMode mode = GhostMode::Dry;
+};
+
+// Interpolates density (and velocity) of the fluid at point xg (inside the domain, grid sorted
+// for the current positions). Kernel: a kernel value type of solver/physics/kernels.hpp.
+template <int D, class Kernel>
+GhostValue<D> ghost_interpolate(const ParticleSet<D>& ps, const CellGrid<D>& grid,
+                                const Kernel& kernel, const Vec<D>& xg, double det_min,
+                                bool with_velocity) {
+  using Mat = Eigen::Matrix<double, D + 1, D + 1>;
+  using Rhs = Eigen::Matrix<double, D + 1, D + 1>;  // column 0: density; 1..D: velocity
+  Mat A = Mat::Zero();
+  Rhs B = Rhs::Zero();
+  const double s2 = kernel.support() * kernel.support();
+  grid.for_each_candidate_near(xg, [&](std::uint32_t b) {
+    if (ps.role[b] != Role::Fluid) return;
+    const Vec<D> r = xg - ps.pos[b];  // x_g - x_b
+    const double r2 = r.squaredNorm();
+    if (!(r2 < s2)) return;
+    const double dist = std::sqrt(r2);
+    const double w = kernel.w(dist);
+    const Vec<D> gw = r * kernel.f(dist);  // grad_g W(x_g - x_b)
+    const double m = ps.mass[b], V = m / ps.rho[b];
+    A(0, 0) += w * V;
+    A.template block<1, D>(0, 1) -= (w * V) * r.transpose();  // (x_b - x_g) W V
+    A.template block<D, 1>(1, 0) += V * gw;
+    A.template block<D, D>(1, 1) -= V * gw * r.transpose();  // gradW (x_b - x_g)^T V
+    B(0, 0) += m * w;
+    B.template block<D, 1>(1, 0) += m * gw;
+    if (with_velocity) {
+      B.template block<1, D>(0, 1) += (w * V) * ps.vel[b].transpose();
+      B.template block<D, D>(1, 1) += V * gw * ps.vel[b].transpose();
+    }
+  });
+  GhostValue<D> out;
+  if (!(A(0, 0) > 0.0)) return out;  // no fluid in reach
+  out.det = A.determinant();
+  if (std::abs(out.det) >= det_min) {
+    const Rhs X = A.inverse() * B;
+    out.rho = X(0, 0);
+    out.grad = X.template block<D, 1>(1, 0);
+    if (with_velocity) out.vel = X.template block<1, D>(0, 1).transpose();
+    out.mode = GhostMode::Corrected;
+  } else {
+    out.rho = B(0, 0) / A(0, 0);
+    if (with_velocity) out.vel = B.template block<1, D>(0, 1).transpose() / A(0, 0);
+    out.mode = GhostMode::Shepard;
+  }
+  return out;
+}
+
+template <int D>
+class MdbcBoundary final : public BoundaryModel<D> {
+ public:
+  using Selection = WallsSeeFluid;
+  MdbcBoundary(MdbcSlip slip, double det_min) : slip_(slip), det_min_(det_min) {}
+  std::string name() const override { return "mdbc"; }
+  // Wall densities (and, without the default slip mode, velocities) from the ghost nodes.
+  void before_forces(StepState<D>& s) override;
+  // The pair loop with DBC's selection (bc/mdbc.cpp).
+  void forces(StepState<D>& s) override;
+  // Walls' drho/dt = 0; wall velocities back to their body's.
+  void after_forces(StepState<D>& s) override;
+
+  // The checkpoint records that its walls were mDBC walls (a DBC checkpoint has no normals).
+  void save(std::map<std::string, double>& out) const override {
+    out["slip"] = static_cast<double>(slip_);
+  }
+  void restore(const std::map<std::string, double>& in) override {
+    if (in.find("slip") == in.end())
+      throw std::invalid_argument(
+          "checkpoint: written by a run with DBC walls, but the case asks for mDBC "
+          "(physics.boundary); restart with the case the run was started with");
+  }
+
+  // Wall particles per mode in the last evaluation (for tests and the run summary).
+  struct Counts {
+    std::size_t corrected = 0, shepard = 0, dry = 0;
+  };
+  const Counts& counts() const { return counts_; }
+
+ private:
+  MdbcSlip slip_;
+  double det_min_;
+  Counts counts_;
+  std::vector<Vec<D>> body_vel_;  // wall velocities while the forces see the slip velocity
+};
+
+template <int D>
+std::unique_ptr<BoundaryModel<D>> make_mdbc(MdbcSlip slip, double det_min) {
+  return std::make_unique<MdbcBoundary<D>>(slip, det_min);
+}
+
+extern template class MdbcBoundary<2>;
+extern template class MdbcBoundary<3>;
+
+}  // namespace swell

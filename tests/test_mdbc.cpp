@@ -1,0 +1,537 @@
+// Modified DBC (bc/mdbc.hpp) piece by piece: nearest surface points of every shape (the wall
+// normals come from them), the normals of a filled tank, the ghost-node interpolation (exact for
+// linear fields, Shepard fallback where the correction matrix is ill-conditioned, rho0 where
+// dry), and whole runs: a still tank against rho0 g d and its fluid-wall gap (DBC beside
+// mDBC), and a restart that continues an mDBC run bitwise.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "apps/case_runner.hpp"
+#include "bc/mdbc.hpp"
+#include "geometry/mesh_solid.hpp"
+#include "geometry/primitives.hpp"
+#include "geometry/wall_normals.hpp"
+#include "io/case_file.hpp"
+#include "io/case_setup.hpp"
+#include "io/hdf5_file.hpp"
+#include "solver/diagnostics.hpp"
+#include "solver/physics/kernels.hpp"
+
+namespace swell {
+namespace {
+
+namespace fs = std::filesystem;
+using Eigen::Vector3d;
+using geometry::BoxShape;
+
+void expect_near(const Vector3d& a, const Vector3d& b, double tol, const std::string& what) {
+  EXPECT_LT((a - b).norm(), tol) << what << ": got (" << a.transpose() << "), expected ("
+                                 << b.transpose() << ")";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Nearest surface points
+
+TEST(WallNormals, BoxNearestPointInsideOutsideCornerAndOpenFaces) {
+  const BoxShape box2(Vector3d(0, 0, 0), Vector3d(0.4, 0.3, 0), 2);
+  expect_near(box2.closest_surface_point({0.1, -0.005, 0}), {0.1, 0, 0}, 1e-15, "below floor");
+  expect_near(box2.closest_surface_point({-0.005, -0.005, 0}), {0, 0, 0}, 1e-15, "corner");
+  expect_near(box2.closest_surface_point({0.1, 0.01, 0}), {0.1, 0, 0}, 1e-15, "inside");
+  expect_near(box2.closest_surface_point({0.39, 0.2, 0}), {0.4, 0.2, 0}, 1e-15, "inside, x+");
+  // Above an open top the nearest closed face is a side wall's top edge, not the top.
+  expect_near(box2.closest_surface_point({0.1, 0.305, 0}), {0.1, 0.3, 0}, 1e-15, "closed top");
+  const unsigned open_ymax = 1u << 3;
+  expect_near(box2.closest_point_on_faces({0.1, 0.305, 0}, open_ymax), {0, 0.3, 0}, 1e-15,
+              "open top");
+  const BoxShape box3(Vector3d(0, 0, 0), Vector3d(1, 2, 3), 3);
+  expect_near(box3.closest_surface_point({-0.1, -0.2, -0.3}), {0, 0, 0}, 1e-15, "3D corner");
+  expect_near(box3.closest_surface_point({-0.1, 1, -0.3}), {0, 1, 0}, 1e-15, "3D edge");
+  expect_near(box3.closest_surface_point({0.5, 1, 2.9}), {0.5, 1, 3}, 1e-15, "3D inside");
+}
+
+TEST(WallNormals, CurvedPrimitivesPolygonAndCsg) {
+  const geometry::CylinderShape cyl(Vector3d(0, 0, 0), Vector3d(0, 0, 1), 0.5, 3);
+  expect_near(cyl.closest_surface_point({1, 0, 0.5}), {0.5, 0, 0.5}, 1e-14, "side");
+  expect_near(cyl.closest_surface_point({0.1, 0, 1.2}), {0.1, 0, 1}, 1e-14, "above cap");
+  expect_near(cyl.closest_surface_point({1, 0, 1.5}), {0.5, 0, 1}, 1e-14, "rim");
+  expect_near(cyl.closest_surface_point({0.1, 0, 0.95}), {0.1, 0, 1}, 1e-14, "inside, cap");
+  expect_near(cyl.closest_surface_point({0, 0.45, 0.5}), {0, 0.5, 0.5}, 1e-14, "inside, side");
+  const geometry::CylinderShape disc(Vector3d(1, 1, 0), Vector3d(1, 1, 0), 0.5, 2);
+  expect_near(disc.closest_surface_point({1, 2, 0}), {1, 1.5, 0}, 1e-14, "disc");
+  const geometry::SphereShape ball(Vector3d(1, 0, 0), 2.0, 3);
+  expect_near(ball.closest_surface_point({1, 0, 5}), {1, 0, 2}, 1e-14, "sphere");
+  expect_near(ball.closest_surface_point({1, 1, 0}), {1, 2, 0}, 1e-14, "sphere, inside");
+
+  const geometry::PolygonShape tri({{{0, 0}, {1, 0}, {0, 1}}});
+  expect_near(tri.closest_surface_point({0.6, 0.6, 0}), {0.5, 0.5, 0}, 1e-14, "hypotenuse");
+  expect_near(tri.closest_surface_point({-0.1, -0.2, 0}), {0, 0, 0}, 1e-14, "vertex");
+  expect_near(tri.closest_surface_point({0.2, 0.1, 0}), {0.2, 0, 0}, 1e-14, "inside");
+
+  // Union, a point outside both: exact (the nearest child's nearest point). A point inside
+  // one child near where the other sticks out must not land inside the other child.
+  auto a = std::make_shared<BoxShape>(Vector3d(0, 0, 0), Vector3d(1, 1, 0), 2);
+  auto b = std::make_shared<BoxShape>(Vector3d(0.5, 0, 0), Vector3d(1.5, 1, 0), 2);
+  const geometry::UnionShape u({a, b});
+  expect_near(u.closest_surface_point({0.75, 1.1, 0}), {0.75, 1, 0}, 1e-14, "union, outside");
+  expect_near(u.closest_surface_point({1.6, 0.5, 0}), {1.5, 0.5, 0}, 1e-14, "union, far side");
+  expect_near(u.closest_surface_point({0.95, 0.1, 0}), {0.95, 0, 0}, 1e-14, "union, inside");
+  // Difference: a box with a round hole; near the hole the hole's rim is nearest.
+  auto hole = std::make_shared<geometry::CylinderShape>(Vector3d(0.5, 0.5, 0),
+                                                        Vector3d(0.5, 0.5, 0), 0.2, 2);
+  const geometry::DifferenceShape d(a, {hole});
+  expect_near(d.closest_surface_point({0.5, 0.25, 0}), {0.5, 0.3, 0}, 1e-14, "hole rim");
+  expect_near(d.closest_surface_point({0.5, 0.05, 0}), {0.5, 0, 0}, 1e-14, "outer face");
+}
+
+// A closed mesh written as OFF: a unit cube (corner and edge), and a sphere (octahedron
+// subdivided 4 times, vertices on the unit sphere) for a curved face.
+std::string write_off(const std::vector<Vector3d>& v, const std::vector<std::array<int, 3>>& f,
+                      const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / name;
+  std::ofstream o(p);
+  o.precision(17);
+  o << "OFF\n" << v.size() << " " << f.size() << " 0\n";
+  for (const auto& x : v) o << x.x() << " " << x.y() << " " << x.z() << "\n";
+  for (const auto& t : f) o << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+  return p.string();
+}
+
+TEST(WallNormals, MeshCornerEdgeAndCurvedFace) {
+  std::vector<Vector3d> v;
+  for (int i = 0; i < 8; ++i) v.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  const std::vector<std::array<int, 3>> f = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6},
+                                             {0, 1, 4}, {1, 5, 4}, {2, 6, 3}, {3, 6, 7},
+                                             {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  const auto cube = geometry::MeshSolid::load(write_off(v, f, "mdbc_cube.off"), {}, false);
+  expect_near(cube->closest_surface_point({0.5, 0.5, -0.1}), {0.5, 0.5, 0}, 1e-12, "face");
+  expect_near(cube->closest_surface_point({-0.1, -0.1, -0.1}), {0, 0, 0}, 1e-12, "corner");
+  expect_near(cube->closest_surface_point({-0.1, 0.5, -0.1}), {0, 0.5, 0}, 1e-12, "edge");
+  expect_near(cube->closest_surface_point({0.5, 0.5, 0.05}), {0.5, 0.5, 0}, 1e-12, "inside");
+
+  // Sphere: subdivide an octahedron, push the vertices to radius 1.
+  std::vector<Vector3d> sv = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::vector<std::array<int, 3>> sf = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                        {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int level = 0; level < 4; ++level) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int i, int j) {
+      const auto key = std::minmax(i, j);
+      const auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      sv.push_back((sv[i] + sv[j]).normalized());
+      return mid[key] = static_cast<int>(sv.size()) - 1;
+    };
+    std::vector<std::array<int, 3>> next;
+    for (const auto& t : sf) {
+      const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+      next.push_back({t[0], ab, ca});
+      next.push_back({t[1], bc, ab});
+      next.push_back({t[2], ca, bc});
+      next.push_back({ab, bc, ca});
+    }
+    sf = next;
+  }
+  const auto sphere = geometry::MeshSolid::load(write_off(sv, sf, "mdbc_sphere.off"), {}, false);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  for (int k = 0; k < 50; ++k) {
+    const Vector3d dir = Vector3d(g(rng), g(rng), g(rng)).normalized();
+    for (double r : {0.9, 1.1}) {
+      const Vector3d q = sphere->closest_surface_point(r * dir);
+      // A nearest point: on the surface, at the exact (AABB-tree) distance of the point; on
+      // the 2048-face sphere the radius is within its chord error (~0.5 %) and the direction
+      // within the facets' angular size (~4 degrees) of the radial one.
+      const Vector3d p = r * dir;
+      EXPECT_NEAR((q - p).norm(), std::abs(sphere->signed_distance(p)), 1e-12);
+      EXPECT_NEAR(sphere->signed_distance(q), 0.0, 1e-12);
+      EXPECT_NEAR(q.norm(), 1.0, 6e-3);
+      EXPECT_GT((q - p).normalized().dot(r > 1 ? -dir : dir), std::cos(5.0 * M_PI / 180.0));
+    }
+  }
+}
+
+// The normals of a filled 2D tank: floor, corner and deep-layer particles mirror to the right
+// ghost nodes, and every ghost node lies inside the tank (the fluid side).
+TEST(WallNormals, TankNormalsPointToTheWallSurface) {
+  const double dp = 0.01;
+  const std::string text =
+      "dim: 2\ndp: 0.01\ntime: {end: 0.1}\nphysics: {boundary: {model: mdbc}}\nbodies:\n"
+      "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.4, 0.3]}}, layers: 3,"
+      " open: [ymax]}\n"
+      "  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.4, 0.2]}}}\n";
+  const CaseSetup<2> s = setup_case<2>(parse_case_text(text, "tank.yaml"));
+  const auto& ps = s.particles;
+  ASSERT_EQ(ps.normal.size(), ps.total());
+  int checked = 0, floor = 0, corner = 0, deep = 0;
+  for (std::size_t i = 0; i < ps.total(); ++i) {
+    const Vec<2> x = ps.pos[i], n = ps.normal[i];
+    if (ps.role[i] == Role::Fluid) {
+      EXPECT_EQ(n, Vec<2>::Zero());
+      continue;
+    }
+    const Vec<2> ghost = x + 2.0 * n;
+    EXPECT_GE(ghost.x(), -1e-12);
+    EXPECT_LE(ghost.x(), 0.4 + 1e-12);
+    EXPECT_GE(ghost.y(), -1e-12);
+    ++checked;
+    if (std::abs(x.x() - 0.2 + 0.005) < 1e-9 && std::abs(x.y() + 0.005) < 1e-9) {
+      EXPECT_NEAR(n.x(), 0.0, 1e-12);
+      EXPECT_NEAR(n.y(), 0.5 * dp, 1e-12);
+      ++floor;
+    }
+    if (std::abs(x.x() + 0.005) < 1e-9 && std::abs(x.y() + 0.005) < 1e-9) {
+      EXPECT_NEAR(n.x(), 0.5 * dp, 1e-12);  // the corner: mirrored through the corner
+      EXPECT_NEAR(n.y(), 0.5 * dp, 1e-12);
+      ++corner;
+    }
+    if (std::abs(x.x() - 0.2 + 0.005) < 1e-9 && std::abs(x.y() + 0.025) < 1e-9) {
+      EXPECT_NEAR(n.y(), 2.5 * dp, 1e-12);
+      ++deep;
+    }
+    // Side walls below the open top mirror sideways.
+    if (std::abs(x.x() + 0.005) < 1e-9 && std::abs(x.y() - 0.295) < 1e-9) {
+      EXPECT_NEAR(n.x(), 0.5 * dp, 1e-12);
+      EXPECT_NEAR(n.y(), 0.0, 1e-12);
+    }
+  }
+  EXPECT_GT(checked, 100);
+  EXPECT_EQ(floor, 1);
+  EXPECT_EQ(corner, 1);
+  EXPECT_EQ(deep, 1);
+}
+
+TEST(WallNormals, PointsBeyondTheWallLayersAreAnError) {
+  geometry::BodyGeometry body;
+  body.name = "plate";
+  body.fluid = false;
+  body.shape = std::make_shared<BoxShape>(Vector3d(0, 0, 0), Vector3d(1, 1, 0), 2);
+  body.layers = 2;
+  geometry::FillOptions opt;
+  opt.dim = 2;
+  opt.dp = 0.01;
+  EXPECT_NO_THROW(geometry::wall_normals(body, {{-0.005, 0.5, 0}}, opt));
+  try {
+    geometry::wall_normals(body, {{-0.2, 0.5, 0}}, opt);
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("'plate'"), std::string::npos) << m;
+    EXPECT_NE(m.find("beyond its 2 wall layers"), std::string::npos) << m;
+  }
+  body.walls_inside = false;  // a structure: ghosts must land outside it
+  EXPECT_NO_THROW(geometry::wall_normals(body, {{0.005, 0.5, 0}}, opt));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ghost-node interpolation
+
+// Fluid particles on a jittered lattice of [x0, x1] x [y0, y1] with density and velocity
+// linear in position.
+ParticleSet<2> linear_fluid(double dp, double x0, double x1, double y0, double y1, double jitter) {
+  ParticleSet<2> ps;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
+  for (double y = y0 + 0.5 * dp; y < y1; y += dp)
+    for (double x = x0 + 0.5 * dp; x < x1; x += dp) {
+      const Vec<2> p(x + u(rng) * dp, y + u(rng) * dp);
+      const double rho = 1000.0 + 40.0 * p.x() - 25.0 * p.y();
+      const Vec<2> v(0.3 + 2.0 * p.x() - 1.0 * p.y(), -0.1 + 0.5 * p.y());
+      ps.add(p, v, rho, rho * dp * dp * (1.0 + 0.1 * u(rng)), Role::Fluid, 0);
+    }
+  return ps;
+}
+
+TEST(MdbcGhost, LinearFieldsAreReproducedExactly) {
+  const double dp = 0.01, h = std::sqrt(2.0) * dp;
+  ParticleSet<2> ps = linear_fluid(dp, 0.0, 0.2, 0.0, 0.2, 0.2);
+  const WendlandC2<2> k(h);
+  CellGrid<2> grid(Vec<2>(-0.1, -0.1), Vec<2>(0.3, 0.3), k.support());
+  grid.sort(ps);
+  // Interior, near a face and near a corner of the fluid (the ghost nodes of wall particles).
+  for (const Vec<2>& xg : {Vec<2>(0.1, 0.1), Vec<2>(0.1, 0.005), Vec<2>(0.007, 0.006)}) {
+    const GhostValue<2> g = ghost_interpolate<2>(ps, grid, k, xg, 1e-3, true);
+    ASSERT_EQ(g.mode, GhostMode::Corrected) << xg.transpose() << " det " << g.det;
+    EXPECT_NEAR(g.rho, 1000.0 + 40.0 * xg.x() - 25.0 * xg.y(), 1e-9);
+    EXPECT_NEAR(g.grad.x(), 40.0, 1e-7);
+    EXPECT_NEAR(g.grad.y(), -25.0, 1e-7);
+    EXPECT_NEAR(g.vel.x(), 0.3 + 2.0 * xg.x() - 1.0 * xg.y(), 1e-10);
+    EXPECT_NEAR(g.vel.y(), -0.1 + 0.5 * xg.y(), 1e-10);
+  }
+  // In the full support the correction matrix is close to the identity's determinant.
+  const GhostValue<2> mid = ghost_interpolate<2>(ps, grid, k, Vec<2>(0.1, 0.1), 1e-3, false);
+  EXPECT_NEAR(mid.det, 1.0, 0.1);
+}
+
+TEST(MdbcGhost, ShepardFallbackAndDryGhosts) {
+  const double dp = 0.01, h = std::sqrt(2.0) * dp;
+  // One row of fluid: the matrix cannot resolve a gradient across the row (det ~ 0).
+  ParticleSet<2> ps = linear_fluid(dp, 0.0, 0.2, 0.0, dp, 0.0);
+  const WendlandC2<2> k(h);
+  CellGrid<2> grid(Vec<2>(-0.1, -0.1), Vec<2>(0.3, 0.3), k.support());
+  grid.sort(ps);
+  const Vec<2> xg(0.1, 0.012);
+  const GhostValue<2> g = ghost_interpolate<2>(ps, grid, k, xg, 1e-3, true);
+  EXPECT_EQ(g.mode, GhostMode::Shepard) << "det " << g.det;
+  EXPECT_LT(std::abs(g.det), 1e-3);
+  double sw = 0.0, smw = 0.0;
+  for (std::size_t b = 0; b < ps.size(); ++b) {
+    const double w = k.w((xg - ps.pos[b]).norm());
+    sw += w * ps.mass[b] / ps.rho[b];
+    smw += w * ps.mass[b];
+  }
+  EXPECT_NEAR(g.rho, smw / sw, 1e-9);
+  EXPECT_EQ(g.grad, Vec<2>::Zero());
+  // The threshold decides: with a tiny one the same node is corrected.
+  const GhostValue<2> c = ghost_interpolate<2>(ps, grid, k, xg, 1e-30, false);
+  if (std::abs(g.det) > 1e-30) EXPECT_EQ(c.mode, GhostMode::Corrected);
+  // Out of reach of any fluid: dry.
+  const GhostValue<2> dry = ghost_interpolate<2>(ps, grid, k, Vec<2>(0.1, 0.2), 1e-3, true);
+  EXPECT_EQ(dry.mode, GhostMode::Dry);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Runs
+
+std::string still_tank(int dim, double dp, double t_end, const std::string& boundary) {
+  std::ostringstream s;
+  s << "name: still_" << boundary << "\ndim: " << dim << "\ndp: " << dp << "\ntime: {end: " << t_end
+    << "}\nphysics: {boundary: {model: " << boundary << "}}\nbodies:\n";
+  if (dim == 2)
+    s << "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.4, 0.3]}}, "
+         "layers: 3, open: [ymax]}\n"
+         "  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.4, 0.2]}}}\n";
+  else
+    s << "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0, 0], max: [0.2, 0.1, 0.3]}},"
+         " layers: 3, open: [zmax]}\n"
+         "  - {name: water, kind: fluid, shape: {box: {min: [0, 0, 0], max: [0.2, 0.1, 0.2]}}}\n";
+  return s.str();
+}
+
+struct StillTankResult {
+  double wall_vs_fluid = 0.0;     // first floor layer's pressure against the fluid's, extrapolated
+  double wall_vs_rho_g_d = 0.0;   // the same against rho0 g (depth below the settled level)
+  double fluid_vs_rho_g_d = 0.0;  // the fluid's extrapolated pressure against rho0 g (depth)
+  double gap = 0.0;               // mean height of the lowest fluid row above the floor [m]
+};
+
+// Runs the still tank to t_end, then, in the middle of the tank (away from the side walls):
+// the mean pressure of the first floor layer of wall particles (at depth dp/2 below the floor
+// surface), the fluid pressure there by a least-squares line p = a + b z through the fluid
+// particles of the lower half of the tank, rho0 g times the depth below the settled level
+// (fluid volume / cross-section), and the mean height of the lowest fluid row.
+template <int D>
+StillTankResult run_still_tank(double dp, double t_end, const std::string& boundary) {
+  CaseSetup<D> setup = setup_case<D>(parse_case_text(still_tank(D, dp, t_end, boundary), "s"));
+  Simulation<D> sim = make_simulation<D>(setup, std::move(setup.particles));
+  while (sim.time() < t_end) sim.step();
+  const auto& ps = sim.particles();
+  const auto& p = sim.pressure();
+  EXPECT_EQ(sim.excluded().total(), 0u);
+  const int up = D - 1;
+  const double g = 9.81, rho0 = 1000.0;
+  const double area = D == 2 ? 0.4 : 0.2 * 0.1;
+  std::size_t nf = 0;
+  double low = 1e9;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.role[i] == Role::Fluid) {
+      ++nf;
+      low = std::min(low, ps.pos[i][up]);
+    }
+  const double level = static_cast<double>(nf) * std::pow(dp, D) / area;
+  double sw = 0.0, sgap = 0.0, s1 = 0.0, sz = 0.0, szz = 0.0, sp = 0.0, szp = 0.0;
+  int nw = 0, ng = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    bool central = true;
+    for (int d = 0; d < up; ++d) {
+      const double width = D == 2 ? 0.4 : (d == 0 ? 0.2 : 0.1);
+      central = central && ps.pos[i][d] > 0.25 * width && ps.pos[i][d] < 0.75 * width;
+    }
+    if (!central) continue;
+    const double z = ps.pos[i][up];
+    if (ps.role[i] != Role::Fluid && std::abs(z + 0.5 * dp) < 0.01 * dp) {
+      sw += p[i];
+      ++nw;
+    }
+    if (ps.role[i] != Role::Fluid) continue;
+    if (z < low + 0.5 * dp) {
+      sgap += z;
+      ++ng;
+    }
+    if (z < 0.5 * level) {
+      s1 += 1.0;
+      sz += z;
+      szz += z * z;
+      sp += p[i];
+      szp += z * p[i];
+    }
+  }
+  EXPECT_GT(nw, 3);
+  EXPECT_GT(ng, 3);
+  const double b = (s1 * szp - sz * sp) / (s1 * szz - sz * sz), a = (sp - b * sz) / s1;
+  const double zw = -0.5 * dp, p_wall = sw / nw, p_fluid = a + b * zw;
+  const double p_exact = rho0 * g * (level - zw);
+  StillTankResult r;
+  r.wall_vs_fluid = p_wall / p_fluid - 1.0;
+  r.wall_vs_rho_g_d = p_wall / p_exact - 1.0;
+  r.fluid_vs_rho_g_d = p_fluid / p_exact - 1.0;
+  r.gap = sgap / ng;
+  std::cout << "  " << D << "D still tank, " << boundary << ", dp " << dp << ", " << t_end
+            << " s: floor wall particles p = " << p_wall << " Pa; fluid extrapolated there "
+            << p_fluid << " Pa; rho0 g d " << p_exact << " Pa. Wall vs fluid "
+            << 100 * r.wall_vs_fluid << " %, wall vs rho0 g d " << 100 * r.wall_vs_rho_g_d
+            << " %, fluid vs rho0 g d " << 100 * r.fluid_vs_rho_g_d << " %; lowest fluid row "
+            << r.gap / dp << " dp above the floor\n";
+  return r;
+}
+
+// mDBC: the floor's wall particles carry the fluid's pressure at their depth within 1 %, and
+// the lowest fluid row stays within 0.6 dp of its initial height dp/2. Both are printed for
+// DBC beside it (not asserted). Against rho0 g d the fluid itself reads ~1.5 % high on this
+// lattice (h = 1.41 dp; the same with DBC, and at dp / 2): the discrete pressure gradient of
+// the symmetric form falls short of the continuous one by about that much, so a balanced
+// column needs that much more pressure; the kernel gradient correction (not yet built) is what
+// removes it. The wall-vs-rho0 g d figure is printed, and bounded at 3 %.
+TEST(MdbcRun, StillTank2DWallPressureAndGap) {
+  const double dp = 0.02;
+  const auto dbc = run_still_tank<2>(dp, 10.0, "dbc");
+  const auto mdbc = run_still_tank<2>(dp, 10.0, "mdbc");
+  EXPECT_LT(std::abs(mdbc.wall_vs_fluid), 0.01);
+  EXPECT_LT(std::abs(mdbc.wall_vs_rho_g_d), 0.03);
+  EXPECT_LT(std::abs(mdbc.gap - 0.5 * dp), 0.6 * dp);
+  (void)dbc;
+}
+
+TEST(MdbcRun, StillTank3DWallPressureAndGap) {
+  const double dp = 0.025;
+  // In this narrow tank (8 x 4 particles) the fluid reads ~4 % above rho0 g d after 2 s, so
+  // only the wall-vs-fluid agreement and the gap are asserted here.
+  const auto mdbc = run_still_tank<3>(dp, 2.0, "mdbc");
+  EXPECT_LT(std::abs(mdbc.wall_vs_fluid), 0.01);
+  EXPECT_LT(std::abs(mdbc.gap - 0.5 * dp), 0.6 * dp);
+}
+
+RunSummary run_dir(const std::string& text, const fs::path& dir, bool restart, int threads) {
+  const CaseSpec spec = parse_case_text(text, "mdbc_restart.yaml");
+  RunOptions opt;
+  opt.out_dir = dir.string();
+  opt.progress = false;
+  opt.restart = restart;
+  opt.threads = threads;
+  std::ostringstream log;
+  opt.log = &log;
+  return run_case(spec, opt);
+}
+
+std::string dambreak_mdbc(double t_end, const std::string& slip) {
+  std::ostringstream s;
+  s << "name: mdbc_restart\ndim: 2\ndp: 0.0028575\ntime: {end: " << t_end << "}\n"
+    << "physics: {boundary: {model: mdbc, slip: " << slip << "}}\n"
+    << "bodies:\n"
+    << "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.28575, 0.2286]}}, "
+       "layers: 3, open: [ymax]}\n"
+    << "  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.05715, 0.1143]}}}\n"
+    << "output: {every: 0.01, vtk: false, hdf5: true}\n";
+  return s.str();
+}
+
+// A run stopped half-way and continued from its checkpoint ends bitwise where the uninterrupted
+// run ends (wall densities are recomputed from the fluid at every evaluation; the no-slip
+// velocities are restored after the forces).
+TEST(MdbcRun, RestartContinuesBitwise) {
+  for (const char* slip : {"wall", "noslip"}) {
+    const fs::path a = fs::temp_directory_path() / "swell_mdbc_full";
+    const fs::path b = fs::temp_directory_path() / "swell_mdbc_split";
+    fs::remove_all(a);
+    fs::remove_all(b);
+    run_dir(dambreak_mdbc(0.04, slip), a, false, 2);
+    run_dir(dambreak_mdbc(0.02, slip), b, false, 1);
+    run_dir(dambreak_mdbc(0.04, slip), b, true, 2);
+    const auto ca = read_checkpoint<2>((a / "checkpoint.h5").string());
+    const auto cb = read_checkpoint<2>((b / "checkpoint.h5").string());
+    EXPECT_EQ(ca.clock.steps, cb.clock.steps) << slip;
+    EXPECT_GT(ca.clock.steps, 100);
+    EXPECT_EQ(ca.particles.rho, cb.particles.rho) << slip;
+    EXPECT_EQ(ca.particles.pos, cb.particles.pos) << slip;
+    EXPECT_EQ(ca.particles.vel, cb.particles.vel) << slip;
+    EXPECT_EQ(ca.particles.normal, cb.particles.normal) << slip;
+  }
+}
+
+// A moving body's normals turn with it: after the motion hook places a rotating flap, each of
+// its wall particles' normal is its body-frame normal turned by the flap's angle, and the
+// ghost node stays on the fluid side of the turned plate.
+TEST(MdbcRun, NormalsTurnWithARotatingBody) {
+  const std::string text =
+      "dim: 2\ndp: 0.01\ntime: {end: 0.5}\nphysics: {boundary: {model: mdbc}}\nbodies:\n"
+      "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1.0, 0.4]}}, open: "
+      "[ymax]}\n"
+      "  - {name: flap, kind: boundary, walls: outside, layers: 2,\n"
+      "     shape: {box: {min: [0.1, 0.0], max: [0.14, 0.35]}},\n"
+      "     motion: {type: rotation, centre: [0.12, 0.0], amplitude: 10, period: 1.0}}\n"
+      "  - {name: water, kind: fluid, shape: {box: {min: [0.2, 0], max: [1.0, 0.2]}}}\n";
+  CaseSetup<2> setup = setup_case<2>(parse_case_text(text, "flap.yaml"));
+  Simulation<2> sim = make_simulation<2>(setup, std::move(setup.particles));
+  while (sim.time() < 0.25) sim.step();  // near the largest angle, 10 degrees
+  const auto& ps = sim.particles();
+  ASSERT_EQ(ps.normal_ref.size(), ps.total());
+  const double theta = setup.motions[1].pose(sim.time()).theta;
+  EXPECT_GT(std::abs(theta), 0.1);
+  const Eigen::Rotation2Dd rot(theta);
+  int moving = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.role[i] != Role::MovingWall) continue;
+    ++moving;
+    const Vec<2> turned = rot * ps.normal_ref[i];
+    EXPECT_LT((ps.normal[i] - turned).norm(), 1e-12);
+    // The ghost lies outside the turned plate: back in the body frame, outside the box.
+    const Vec<2> ghost_ref = ps.pos_ref[i] + 2.0 * ps.normal_ref[i];
+    const bool inside = ghost_ref.x() > 0.1 + 1e-9 && ghost_ref.x() < 0.14 - 1e-9 &&
+                        ghost_ref.y() > 1e-9 && ghost_ref.y() < 0.35 - 1e-9;
+    EXPECT_FALSE(inside) << ghost_ref.transpose();
+  }
+  EXPECT_GT(moving, 50);
+}
+
+TEST(MdbcRun, DbcCheckpointIsRefusedForAnMdbcCase) {
+  const fs::path d = fs::temp_directory_path() / "swell_mdbc_mismatch";
+  fs::remove_all(d);
+  std::string dbc = dambreak_mdbc(0.01, "wall");
+  dbc.replace(dbc.find("{model: mdbc, slip: wall}"), 25, "{model: dbc}");
+  run_dir(dbc, d, false, 1);
+  try {
+    run_dir(dambreak_mdbc(0.02, "wall"), d, true, 1);
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("DBC walls"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MdbcCase, BadBoundaryKeysAreErrors) {
+  auto err = [](const std::string& physics) {
+    const std::string text =
+        "dim: 2\ndp: 0.01\ntime: {end: 0.1}\nphysics: {boundary: " + physics +
+        "}\nbodies:\n"
+        "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.4, 0.3]}}}\n"
+        "  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.4, 0.2]}}}\n";
+    try {
+      parse_case_text(text, "b.yaml");
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(err("{model: mbdc}").find("expected one of: dbc, mdbc"), std::string::npos);
+  EXPECT_NE(err("{model: mdbc, slip: sticky}").find("wall, noslip, freeslip"), std::string::npos);
+  EXPECT_NE(err("{model: dbc, slip: noslip}").find("unknown key"), std::string::npos);
+  EXPECT_NE(err("{model: mdbc, det_min: 2}").find("a number in (0, 1)"), std::string::npos);
+  EXPECT_EQ(err("{model: mdbc, slip: freeslip, det_min: 0.01}"), "");
+}
+
+}  // namespace
+}  // namespace swell
