@@ -16,7 +16,8 @@ const char* kind_comment(GaugeSpec::Kind k) {
   switch (k) {
     case GaugeSpec::Kind::Pressure:
       return "pressure probes: Shepard-normalised kernel interpolation of fluid pressure [Pa]; "
-             "empty where not sampled, nan where dry";
+             "empty where not sampled, nan where dry; sensor faces (size): face average of "
+             "the pressure extrapolated to the wall, mean over the interval up to the row's time";
     case GaugeSpec::Kind::Height:
       return "water height: free-surface elevation [m] where the kernel-interpolated density "
              "along the vertical line falls below rho0/2";
@@ -41,6 +42,13 @@ std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
   return with_kernel<D>(p.kernel, p.h, [&](const auto& kernel) -> std::vector<double> {
     switch (g.kind) {
       case GaugeSpec::Kind::Pressure: {
+        if (g.size) {
+          const Vec<D> n = g.normal->template head<D>().normalized();
+          std::vector<std::uint32_t> scratch;
+          return {face_pressure(ps, pressure, kernel, face_points<D>(at, n, *g.size, p.dp), n,
+                                g.offset ? *g.offset : p.h, p.rho0,
+                                Vec<D>(p.gravity.template head<D>()), scratch)};
+        }
         Vec<D> x = at;
         if (g.normal) x += (g.offset ? *g.offset : p.h) * Vec<D>(g.normal->template head<D>());
         return {probe_pressure(ps, pressure, kernel, x)};
@@ -98,6 +106,7 @@ GaugeSet<D>::GaugeSet(const std::vector<GaugeSpec>& gauges, double default_every
       e.next = 0.0;
       e.file = file;
       e.first_column = columns.size();
+      averaging_ = averaging_ || (gauges[i].kind == GaugeSpec::Kind::Pressure && gauges[i].size);
       for (auto& c : gauge_columns(gauges[i], D)) columns.push_back(c);
     }
     const std::string path =
@@ -126,7 +135,11 @@ void GaugeSet<D>::sample(double time, const ParticleSet<D>& ps, const std::vecto
     bool any = false;
     for (auto& e : gauges_) {
       if (e.file != static_cast<int>(f) || time < e.next - 1e-12) continue;
-      const auto values = evaluate_gauge<D>(e.spec, ctx_, ps, pressure, ace);
+      auto values = evaluate_gauge<D>(e.spec, ctx_, ps, pressure, ace);
+      if (e.acc_t > 0.0) {  // a sensor face: the interval's mean instead of the instant's
+        values[0] = e.acc / e.acc_t;
+        e.acc = e.acc_t = 0.0;
+      }
       for (std::size_t k = 0; k < values.size(); ++k) {
         row_[e.first_column + k] = values[k];
         present_[e.first_column + k] = true;
@@ -139,13 +152,40 @@ void GaugeSet<D>::sample(double time, const ParticleSet<D>& ps, const std::vecto
 }
 
 template <int D>
+void GaugeSet<D>::accumulate(double dt, const ParticleSet<D>& ps,
+                             const std::vector<double>& pressure) {
+  if (!averaging_ || !(dt > 0.0)) return;
+  const SolverParams& p = ctx_.params;
+  with_kernel<D>(p.kernel, p.h, [&](const auto& kernel) {
+    for (auto& e : gauges_) {
+      if (e.spec.kind != GaugeSpec::Kind::Pressure || !e.spec.size) continue;
+      if (e.points.empty()) {  // once: the face's quadrature points
+        e.normal = e.spec.normal->template head<D>().normalized();
+        e.points = face_points<D>(e.spec.at.template head<D>(), e.normal, *e.spec.size, p.dp);
+      }
+      e.acc += dt * face_pressure(ps, pressure, kernel, e.points, e.normal,
+                                  e.spec.offset ? *e.spec.offset : p.h, p.rho0,
+                                  Vec<D>(p.gravity.template head<D>()), scratch_);
+      e.acc_t += dt;
+    }
+    return 0;
+  });
+}
+
+template <int D>
 void GaugeSet<D>::flush() {
   for (auto& f : files_) f->flush();
 }
 
 template <int D>
 void GaugeSet<D>::save_schedule(std::map<std::string, double>& schedule) const {
-  for (const auto& e : gauges_) schedule["gauge." + e.spec.name] = e.next;
+  for (const auto& e : gauges_) {
+    schedule["gauge." + e.spec.name] = e.next;
+    if (e.acc_t > 0.0) {  // a sensor face's unfinished interval
+      schedule["gauge_acc." + e.spec.name] = e.acc;
+      schedule["gauge_acc_t." + e.spec.name] = e.acc_t;
+    }
+  }
 }
 
 template <int D>
@@ -153,6 +193,12 @@ void GaugeSet<D>::load_schedule(const std::map<std::string, double>& schedule) {
   for (auto& e : gauges_) {
     const auto it = schedule.find("gauge." + e.spec.name);
     if (it != schedule.end()) e.next = it->second;
+    const auto a = schedule.find("gauge_acc." + e.spec.name);
+    const auto at = schedule.find("gauge_acc_t." + e.spec.name);
+    if (a != schedule.end() && at != schedule.end()) {
+      e.acc = a->second;
+      e.acc_t = at->second;
+    }
   }
 }
 

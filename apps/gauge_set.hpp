@@ -43,6 +43,10 @@ class GaugeSet {
   // Samples every gauge whose time has come and writes one row per kind.
   void sample(double time, const ParticleSet<D>& ps, const std::vector<double>& pressure,
               const std::vector<Vec<D>>& ace);
+  // Sensor faces (pressure gauges with a size) are averaged over each sampling interval: call
+  // this after every step with the step's dt (sample() then writes the interval means).
+  bool averages() const { return averaging_; }
+  void accumulate(double dt, const ParticleSet<D>& ps, const std::vector<double>& pressure);
   void flush();
   void save_schedule(std::map<std::string, double>& schedule) const;
   void load_schedule(const std::map<std::string, double>& schedule);
@@ -53,6 +57,9 @@ class GaugeSet {
     double every = 0.0, next = 0.0;
     int file = 0;                  // index into files_
     std::size_t first_column = 0;  // within that file's row
+    double acc = 0.0, acc_t = 0.0;  // sensor face: integral of p dt and its duration so far
+    std::vector<Vec<D>> points;     // sensor face: quadrature points (built on first use)
+    Vec<D> normal = Vec<D>::Zero();
   };
   std::vector<Entry> gauges_;
   std::vector<std::unique_ptr<GaugeCsvFile>> files_;
@@ -60,6 +67,8 @@ class GaugeSet {
   GaugeContext ctx_;
   std::vector<double> row_;
   std::vector<bool> present_;
+  bool averaging_ = false;
+  std::vector<std::uint32_t> scratch_;
 };
 
 }  // namespace swell

@@ -251,6 +251,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   const double time0 = sim->time();
   while (sim->time() < t_end) {
     sim->step();
+    if (gauges.averages()) gauges.accumulate(sim->dt(), sim->particles(), sim->pressure());
     outputs(sim->time() >= t_end);
     const auto now = std::chrono::steady_clock::now();
     if (opt.progress && (now - last_progress > std::chrono::seconds(2) || sim->time() >= t_end)) {

@@ -27,7 +27,7 @@ const Names kCommonKeys = {"name", "kind", "every"};
 
 const std::vector<GaugeKindInfo>& gauge_kinds() {
   static const std::vector<GaugeKindInfo> kinds = {
-      {"pressure", GaugeSpec::Kind::Pressure, {"at", "normal", "offset"}},
+      {"pressure", GaugeSpec::Kind::Pressure, {"at", "normal", "offset", "size"}},
       {"height", GaugeSpec::Kind::Height, {"at"}},
       {"velocity", GaugeSpec::Kind::Velocity, {"at"}},
       {"force", GaugeSpec::Kind::Force, {"body", "moment_about"}},
@@ -166,6 +166,14 @@ void GaugeReader::read_pressure(const YAML::Node& node, const std::string& path,
     }
     gauge.offset = number_if(
         *v, child(path, "offset"), [](double o) { return o >= 0.0; }, "a number >= 0");
+  }
+  if (auto v = find(node, "size")) {
+    if (!gauge.normal) {
+      fail(*v, child(path, "size") +
+                   ": 'size' (a sensor face) needs 'normal', the face's normal into the fluid");
+    }
+    gauge.size = number_if(
+        *v, child(path, "size"), [](double d) { return d > 0.0; }, "a number > 0 [m]");
   }
 }
 

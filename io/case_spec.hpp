@@ -53,6 +53,11 @@ struct GaugeSpec {
   // at + offset * normal, offset defaulting to h (DualSPHysics-style wall pressure probes).
   std::optional<Eigen::Vector3d> normal;
   std::optional<double> offset;
+  // pressure with `size`: a sensor face on the wall (a disc of this diameter in 3D, a segment of
+  // this length in 2D) centred at `at`, facing along `normal`: the face average of the fluid
+  // pressure extrapolated to the wall, taken every step and written as the mean over each
+  // sampling interval (solver/gauges.hpp face_pressure).
+  std::optional<double> size;
   std::string body;                             // force: the boundary body name
   std::optional<Eigen::Vector3d> moment_about;  // force: moment reference point (default origin)
   std::optional<double> band;                   // front: band height above the floor (default 2h)

@@ -13,7 +13,8 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>  // cross()
+#include <Eigen/Geometry>  // cross(), unitOrthogonal()
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -63,6 +64,72 @@ double probe_pressure(const ParticleSet<D>& ps, const std::vector<double>& press
   });
   if (!(sum_w > 0.0)) return std::numeric_limits<double>::quiet_NaN();
   return sum_p / sum_w;
+}
+
+// Quadrature points of a sensor face centred at c with unit normal n: a segment of length
+// `size` across n (2D) or a disc of diameter `size` (3D), points about dp/2 apart (at least 4 a
+// side in 2D, the centre if the disc is smaller than the spacing).
+template <int D>
+std::vector<Vec<D>> face_points(const Vec<D>& c, const Vec<D>& n, double size, double dp) {
+  std::vector<Vec<D>> pts;
+  const int k = std::max(4, static_cast<int>(std::ceil(size / (0.5 * dp))));
+  if constexpr (D == 2) {
+    const Vec<D> t(-n.y(), n.x());
+    for (int i = 0; i < k; ++i) pts.push_back(c + (-0.5 + (i + 0.5) / k) * size * t);
+  } else {
+    const Vec<D> t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+    const double r = 0.5 * size;
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) {
+        const double u = (-0.5 + (i + 0.5) / k) * size, v = (-0.5 + (j + 0.5) / k) * size;
+        if (u * u + v * v <= r * r) pts.push_back(c + u * t1 + v * t2);
+      }
+    if (pts.empty()) pts.push_back(c);
+  }
+  return pts;
+}
+
+// Pressure on a sensor face: at each face point x_s, the fluid pressure at x_s + offset n
+// (probe_pressure: Shepard) extrapolated back to the wall hydrostatically,
+//   p(x_s) = p(x_s + offset n) - rho0 offset g . n,
+// averaged over the face with dry points (no fluid within the support) counted as 0, as a
+// transducer reads air. One scan of the particles per call (those within reach of the face).
+// `scratch` holds the indices of that scan (reused between calls: no allocation once sized).
+template <int D, class K>
+double face_pressure(const ParticleSet<D>& ps, const std::vector<double>& pressure,
+                     const K& kernel, const std::vector<Vec<D>>& points, const Vec<D>& n,
+                     double offset, double rho0, const Vec<D>& g,
+                     std::vector<std::uint32_t>& scratch) {
+  if (pressure.size() < ps.size())
+    throw std::invalid_argument("face_pressure: pressure array shorter than the particle set");
+  const double s = kernel.support();
+  Vec<D> lo = points.front(), hi = points.front();
+  for (const auto& x : points) {
+    lo = lo.cwiseMin(x + offset * n);
+    hi = hi.cwiseMax(x + offset * n);
+  }
+  scratch.clear();
+  for (std::size_t j = 0; j < ps.size(); ++j) {
+    if (ps.role[j] != Role::Fluid) continue;
+    if (((ps.pos[j].array() < lo.array() - s) || (ps.pos[j].array() > hi.array() + s)).any())
+      continue;
+    scratch.push_back(static_cast<std::uint32_t>(j));
+  }
+  const double correction = -rho0 * offset * g.dot(n);
+  double sum = 0.0;
+  for (const auto& x : points) {
+    const Vec<D> q = x + offset * n;
+    double sum_p = 0.0, sum_w = 0.0;
+    for (const std::uint32_t j : scratch) {
+      const double r = (q - ps.pos[j]).norm();
+      if (!(r < s)) continue;
+      const double wv = kernel.w(r) * ps.mass[j] / ps.rho[j];
+      sum_p += pressure[j] * wv;
+      sum_w += wv;
+    }
+    if (sum_w > 0.0) sum += sum_p / sum_w + correction;
+  }
+  return sum / static_cast<double>(points.size());
 }
 
 // Velocity at point x: the same Shepard-normalised interpolation as probe_pressure applied

@@ -1,0 +1,162 @@
+// Pressure sensor faces (pressure gauges with `size`): the face average of the fluid pressure
+// extrapolated to the wall equals the exact wall pressure on a hand-made hydrostatic field (2D
+// segment, 3D disc), dry parts of a face read 0, the written value is the dt-weighted mean over
+// the sampling interval (never a point sample), and `size` needs `normal`.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "apps/gauge_set.hpp"
+#include "io/case_file.hpp"
+#include "solver/gauges.hpp"
+#include "solver/physics/kernels.hpp"
+
+namespace swell {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kRho0 = 1000.0, kG = 9.81, kLevel = 0.2;
+
+// Fluid on the lattice of [0, 0.2]^D below the level, at rest, p = rho0 g (level - z).
+template <int D>
+ParticleSet<D> hydrostatic_block(double dp, std::vector<double>& pressure) {
+  ParticleSet<D> ps;
+  const int n = static_cast<int>(std::lround(0.2 / dp));
+  const int nz = D == 3 ? n : 1;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        Vec<D> x;
+        x[0] = (i + 0.5) * dp;
+        x[1] = (j + 0.5) * dp;
+        if constexpr (D == 3) x[2] = (k + 0.5) * dp;
+        ps.add(x, Vec<D>::Zero(), kRho0, kRho0 * std::pow(dp, D), Role::Fluid, 0);
+        pressure.push_back(kRho0 * kG * (kLevel - x[D - 1]));
+      }
+  return ps;
+}
+
+template <int D>
+void check_floor_sensor(double dp) {
+  std::vector<double> p;
+  const ParticleSet<D> ps = hydrostatic_block<D>(dp, p);
+  const WendlandC2<D> kernel(std::sqrt(double(D)) * dp);
+  Vec<D> c = Vec<D>::Constant(0.1), n = Vec<D>::Zero(), g = Vec<D>::Zero();
+  c[D - 1] = 0.0;
+  n[D - 1] = 1.0;
+  g[D - 1] = -kG;
+  // Offset 2.5 dp (2D) / 3.5 dp (3D), beyond the kernel support: the probe points sit on a
+  // lattice row with their whole support in the fluid, where the Shepard interpolation of a
+  // field linear in z is exact by symmetry; the hydrostatic correction then gives the wall value.
+  const double off = (D == 2 ? 2.5 : 3.5) * dp;
+  const auto pts = face_points<D>(c, n, 0.03, dp);
+  EXPECT_GE(pts.size(), D == 2 ? 6u : 12u);
+  std::vector<std::uint32_t> scratch;
+  const double pw = face_pressure(ps, p, kernel, pts, n, off, kRho0, g, scratch);
+  EXPECT_NEAR(pw, kRho0 * kG * kLevel, 1e-9 * kRho0 * kG * kLevel) << D << "D";
+  // The same face above the water reads 0 (air), half out of it reads between.
+  Vec<D> side_n = Vec<D>::Zero(), top = Vec<D>::Constant(0.1);
+  side_n[0] = 1.0;
+  top[0] = 0.0;
+  top[D - 1] = 0.5;
+  const auto dry = face_points<D>(top, side_n, 0.03, dp);
+  EXPECT_EQ(face_pressure(ps, p, kernel, dry, side_n, off, kRho0, g, scratch), 0.0);
+  top[D - 1] = kLevel;
+  const auto half = face_points<D>(top, side_n, 0.1, dp);
+  const double ph = face_pressure(ps, p, kernel, half, side_n, off, kRho0, g, scratch);
+  EXPECT_GT(ph, 0.0);
+  EXPECT_LT(ph, kRho0 * kG * 0.05);
+}
+
+TEST(SensorFace, HydrostaticWallPressureIsExact2D) {
+  check_floor_sensor<2>(0.01);
+}
+TEST(SensorFace, HydrostaticWallPressureIsExact3D) {
+  check_floor_sensor<3>(0.02);
+}
+
+// The written value is the mean of the per-step values weighted by dt over the interval, and
+// the interval's state survives a checkpoint (schedule) round trip.
+TEST(SensorFace, WritesTheIntervalMeanNotAPointSample) {
+  const double dp = 0.01;
+  std::vector<double> p0;
+  const ParticleSet<2> ps = hydrostatic_block<2>(dp, p0);
+  GaugeSpec g;
+  g.name = "S";
+  g.kind = GaugeSpec::Kind::Pressure;
+  g.at = Eigen::Vector3d(0.1, 0.0, 0.0);
+  g.normal = Eigen::Vector3d(0.0, 1.0, 0.0);
+  g.offset = 2.5 * dp;
+  g.size = 0.03;
+  GaugeContext ctx;
+  ctx.params.dp = dp;
+  ctx.params.h = std::sqrt(2.0) * dp;
+  ctx.params.rho0 = kRho0;
+  ctx.params.gravity = Eigen::Vector3d(0.0, -kG, 0.0);
+  const fs::path dir = fs::temp_directory_path() / "swell_test_sensor";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const double wall = kRho0 * kG * kLevel;
+  {
+    GaugeSet<2> set({g}, 0.1, ctx, dir.string(), "sensor", -1.0);
+    ASSERT_TRUE(set.averages());
+    set.sample(0.0, ps, p0, {});  // t = 0: the instant's value
+    // Steps of 0.02, 0.03, 0.05 s with the whole field scaled by 1, 3, 2: the hydrostatic
+    // correction is not scaled, so the face reads s (wall - c) + c, c = rho0 g 2.5 dp.
+    const double c = kRho0 * kG * 2.5 * dp;
+    const double dts[3] = {0.02, 0.03, 0.05}, scales[3] = {1.0, 3.0, 2.0};
+    double t = 0.0, expect = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      std::vector<double> pk(p0);
+      for (auto& v : pk) v *= scales[k];
+      if (k == 1) {  // a checkpoint in the middle of the interval
+        std::map<std::string, double> sched;
+        set.save_schedule(sched);
+        EXPECT_EQ(sched.count("gauge_acc.S"), 1u);
+        set.load_schedule(sched);
+      }
+      set.accumulate(dts[k], ps, pk);
+      t += dts[k];
+      expect += dts[k] * (scales[k] * (wall - c) + c);
+    }
+    expect /= t;
+    set.sample(t, ps, p0, {});  // the instant's field would read `wall`
+    set.flush();
+    std::ifstream f(dir / "gauges_pressure.csv");
+    std::string line, last;
+    std::vector<std::string> rows;
+    while (std::getline(f, line))
+      if (!line.empty() && line[0] != '#') rows.push_back(line);
+    ASSERT_EQ(rows.size(), 3u);  // header, t = 0, t = 0.1
+    const double v0 = std::stod(rows[1].substr(rows[1].find(',') + 1));
+    const double v1 = std::stod(rows[2].substr(rows[2].find(',') + 1));
+    EXPECT_NEAR(v0, wall, 1e-6 * wall);
+    EXPECT_NEAR(v1, expect, 1e-6 * wall);
+    EXPECT_GT(std::abs(v1 - wall), 0.5 * wall);  // clearly not the instant's value
+  }
+}
+
+TEST(SensorFace, SizeNeedsANormal) {
+  const std::string text =
+      "dim: 2\ndp: 0.01\ntime: {end: 0.1}\nbodies:\n"
+      "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.4, 0.3]}}}\n"
+      "  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.4, 0.2]}}}\n"
+      "gauges:\n  - {name: S, kind: pressure, at: [0.2, 0.0], size: 0.01}\n";
+  try {
+    parse_case_text(text, "s.yaml");
+    FAIL() << "expected an error";
+  } catch (const CaseError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("s.yaml:8"), std::string::npos) << m;
+    EXPECT_NE(m.find("'size' (a sensor face) needs 'normal'"), std::string::npos) << m;
+  }
+  const std::string ok = text.substr(0, text.rfind("size")) + "normal: [0, 1], size: 0.01}\n";
+  const CaseSpec spec = parse_case_text(ok, "s.yaml");
+  ASSERT_EQ(spec.gauges.size(), 1u);
+  EXPECT_EQ(*spec.gauges[0].size, 0.01);
+}
+
+}  // namespace
+}  // namespace swell
