@@ -55,8 +55,8 @@ class GaugeSet {
   struct Entry {
     GaugeSpec spec;
     double every = 0.0, next = 0.0;
-    int file = 0;                  // index into files_
-    std::size_t first_column = 0;  // within that file's row
+    int file = 0;                   // index into files_
+    std::size_t first_column = 0;   // within that file's row
     double acc = 0.0, acc_t = 0.0;  // sensor face: integral of p dt and its duration so far
     std::vector<Vec<D>> points;     // sensor face: quadrature points (built on first use)
     Vec<D> normal = Vec<D>::Zero();

@@ -128,8 +128,9 @@ int main(int argc, char** argv) {
   std::string bench_threads, bench_sweep_dp;
   auto* bench = app.add_subcommand(
       "bench", "performance benchmark: B2D, B3D (DualSPHysics' cases), 1 and 2 threads, scaling");
-  bench->add_option("cases", bench_opt.cases,
-                    "b2d, b3d, b3d_fine (default: these three); b2d_mdbc, b3d_mdbc (mDBC walls)")
+  bench
+      ->add_option("cases", bench_opt.cases,
+                   "b2d, b3d, b3d_fine (default: these three); b2d_mdbc, b3d_mdbc (mDBC walls)")
       ->check(CLI::IsMember({"b2d", "b3d", "b3d_fine", "b2d_mdbc", "b3d_mdbc"}));
   bench->add_option("--threads", bench_threads, "thread counts t1,t2 (default 1,2)");
   bench->add_option("--repeats", bench_opt.repeats, "runs per point; medians are reported")

@@ -96,10 +96,9 @@ std::vector<Vec<D>> face_points(const Vec<D>& c, const Vec<D>& n, double size, d
 // transducer reads air. One scan of the particles per call (those within reach of the face).
 // `scratch` holds the indices of that scan (reused between calls: no allocation once sized).
 template <int D, class K>
-double face_pressure(const ParticleSet<D>& ps, const std::vector<double>& pressure,
-                     const K& kernel, const std::vector<Vec<D>>& points, const Vec<D>& n,
-                     double offset, double rho0, const Vec<D>& g,
-                     std::vector<std::uint32_t>& scratch) {
+double face_pressure(const ParticleSet<D>& ps, const std::vector<double>& pressure, const K& kernel,
+                     const std::vector<Vec<D>>& points, const Vec<D>& n, double offset, double rho0,
+                     const Vec<D>& g, std::vector<std::uint32_t>& scratch) {
   if (pressure.size() < ps.size())
     throw std::invalid_argument("face_pressure: pressure array shorter than the particle set");
   const double s = kernel.support();
