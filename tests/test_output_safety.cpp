@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -171,6 +172,17 @@ TEST(OutputSafety, KillInsideSnapshotWriteLosesNoEarlierSnapshot) {
   ASSERT_EQ(run_swell({"run", c, "-o", full.string(), "-q", "-t", "1"}, root).rc, 0);
   const std::size_t n_full = list_snapshots((full / "small.h5").string()).size();
   ASSERT_EQ(n_full, 9u);  // t = 0, 0.005, ..., 0.04
+  // `swell probe` reads the run file: the same rows from the killed and continued run.
+  auto probe = [&](const fs::path& out) {
+    const fs::path csv = root / "probe.csv";
+    fs::remove(csv);
+    EXPECT_EQ(run_swell({"probe", out.string(), "--at", "0.02,0.01", "-o", csv.string()}, root).rc,
+              0);
+    const std::string text = read_text(csv);
+    return text.substr(text.find('\n') + 1);  // without the comment naming the folder
+  };
+  const std::string probe_full = probe(full);
+  ASSERT_EQ(std::count(probe_full.begin(), probe_full.end(), '\n'), 9 + 1);  // + the header
 
   for (const std::string point : {"snapshot-data", "snapshot-index"}) {
     for (const int n : {3, 6}) {  // the first checkpoint comes with snapshot 2
@@ -186,6 +198,7 @@ TEST(OutputSafety, KillInsideSnapshotWriteLosesNoEarlierSnapshot) {
       expect_same_snapshots(full, out);
       expect_same_end(full, out);
       expect_pvd_lists_every_vtk_file(out);
+      EXPECT_EQ(probe(out), probe_full);
     }
   }
 }
@@ -327,6 +340,35 @@ TEST(OutputSafety, FileSizeLimitExitsOneAndKeepsTheCheckpoint) {
   ASSERT_EQ(again.rc, 0) << again.err;
   expect_same_end(full, limited);
   EXPECT_EQ(read_text(full / "gauges_velocity.csv"), read_text(limited / "gauges_velocity.csv"));
+}
+
+// A file size limit met by an HDF5 write (the checkpoint, the largest file): exit 1 with
+// HDF5's reason, not a crash in HDF5's exit handler; no temporary file left, the snapshots
+// already written read back.
+TEST(OutputSafety, FailedHdf5WriteExitsOneCleanly) {
+  const fs::path root = fresh_root("fsize_hdf5");
+  const std::string c = write_case(root, "small.yaml", small_case(0.02));
+  const fs::path full = root / "full", limited = root / "limited";
+  ASSERT_EQ(run_swell({"run", c, "-o", full.string(), "-q", "-t", "1"}, root).rc, 0);
+  std::uintmax_t largest_other = 0;
+  for (const auto& e : fs::recursive_directory_iterator(full))
+    if (e.is_regular_file() && !e.path().filename().string().starts_with("checkpoint"))
+      largest_other = std::max(largest_other, e.file_size());
+  const std::uintmax_t checkpoint = fs::file_size(full / "checkpoint.h5");
+  ASSERT_LT(largest_other, checkpoint);
+  ChildOptions o;
+  o.file_size = (largest_other + checkpoint) / 2;
+  const Result r = run_swell({"run", c, "-o", limited.string(), "-q", "-t", "1"}, root, o);
+  EXPECT_EQ(r.rc, 1) << r.err;
+  EXPECT_TRUE(
+      contains(r.err, "error: HDF5 file '" + (limited / "checkpoint.h5.tmp").string() + "': "))
+      << r.err;
+  EXPECT_TRUE(contains(r.err, "file write failed: File too large)")) << r.err;
+  for (const auto& e : fs::recursive_directory_iterator(limited))
+    EXPECT_FALSE(e.path().string().ends_with(".tmp")) << e.path();
+  const auto snaps = list_snapshots((limited / "small.h5").string());
+  ASSERT_FALSE(snaps.empty());
+  for (const auto& s : snaps) EXPECT_NO_THROW(read_snapshot<2>((limited / "small.h5").string(), s));
 }
 
 // SIGINT (exit 130) and SIGTERM (exit 143) stop the run between two steps with a checkpoint
