@@ -2,12 +2,8 @@
 // binary in child processes: kills aimed at snapshot writes, folders that already hold a run,
 // checkpoints of another case, unsafe case names, a file size limit, SIGINT/SIGTERM, option
 // errors and two runs on one folder. Each error path asserts its exit code and message.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,6 +19,7 @@
 #include "io/case_identity.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/run_folder.hpp"
+#include "tests/child_process.hpp"
 
 namespace swell {
 namespace {
@@ -65,40 +62,24 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-struct ChildOptions {
-  std::vector<std::string> env;      // "NAME=value"
-  rlim_t file_size = RLIM_INFINITY;  // RLIMIT_FSIZE in bytes
-};
+using test::ChildOptions;
+using test::wait_exit;
 
 // Starts `swell args...` with stdout discarded and stderr into `err`.
-pid_t spawn(const std::vector<std::string>& args, const fs::path& err, const ChildOptions& o = {}) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    std::vector<std::string> all = {kSwell};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    for (const auto& e : o.env) putenv(const_cast<char*>(e.c_str()));
-    const int devnull = ::open("/dev/null", O_WRONLY);
-    const int errfd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(devnull, 1);
-    dup2(errfd, 2);
-    if (o.file_size != RLIM_INFINITY) {
-      const rlimit lim{o.file_size, o.file_size};
-      setrlimit(RLIMIT_FSIZE, &lim);
-    }
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  return pid;
+pid_t spawn(const std::vector<std::string>& args, const fs::path& err, ChildOptions o = {}) {
+  std::vector<std::string> all = {kSwell};
+  all.insert(all.end(), args.begin(), args.end());
+  o.err = err.string();
+  return test::spawn(all, o);
 }
 
-// The exit code, or minus the signal that ended the child.
-int wait_exit(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+// The largest file below `dir` whose name does not start with `skip`.
+std::uintmax_t largest_file(const fs::path& dir, const std::string& skip) {
+  std::uintmax_t largest = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && !e.path().filename().string().starts_with(skip))
+      largest = std::max(largest, e.file_size());
+  return largest;
 }
 
 struct Result {
@@ -318,10 +299,7 @@ TEST(OutputSafety, FileSizeLimitExitsOneAndKeepsTheCheckpoint) {
   const std::string c = write_case(root, "small.yaml", text);
   const fs::path full = root / "full", limited = root / "limited";
   ASSERT_EQ(run_swell({"run", c, "-o", full.string(), "-q", "-t", "1"}, root).rc, 0);
-  std::uintmax_t largest_other = 0;
-  for (const auto& e : fs::recursive_directory_iterator(full))
-    if (e.is_regular_file() && e.path().filename() != "gauges_velocity.csv")
-      largest_other = std::max(largest_other, e.file_size());
+  const std::uintmax_t largest_other = largest_file(full, "gauges_velocity.csv");
   const rlim_t limit = largest_other * 3 / 2;
   ASSERT_GT(fs::file_size(full / "gauges_velocity.csv"), 2 * limit);
 
@@ -350,10 +328,7 @@ TEST(OutputSafety, FailedHdf5WriteExitsOneCleanly) {
   const std::string c = write_case(root, "small.yaml", small_case(0.02));
   const fs::path full = root / "full", limited = root / "limited";
   ASSERT_EQ(run_swell({"run", c, "-o", full.string(), "-q", "-t", "1"}, root).rc, 0);
-  std::uintmax_t largest_other = 0;
-  for (const auto& e : fs::recursive_directory_iterator(full))
-    if (e.is_regular_file() && !e.path().filename().string().starts_with("checkpoint"))
-      largest_other = std::max(largest_other, e.file_size());
+  const std::uintmax_t largest_other = largest_file(full, "checkpoint");
   const std::uintmax_t checkpoint = fs::file_size(full / "checkpoint.h5");
   ASSERT_LT(largest_other, checkpoint);
   ChildOptions o;
