@@ -20,6 +20,8 @@ struct RunOptions {
   // Continue from OUTDIR/checkpoint.h5 (or its .prev if the last one is damaged) up to the
   // case's time.end; outputs written after the checkpoint time are replaced.
   bool restart = false;
+  // Replace the run an output folder already holds (else such a folder is refused).
+  bool overwrite = false;
 };
 
 struct RunSummary {
@@ -37,8 +39,10 @@ struct RunSummary {
 
 // Runs the case to time.end, writing OUTDIR/<name>.pvd + OUTDIR/vtk/*.vtp, OUTDIR/<name>.h5
 // (snapshots + metadata), OUTDIR/checkpoint.h5, OUTDIR/gauges_<kind>.csv and
-// OUTDIR/diagnostics.csv. Throws InstabilityError if the run blows up (the last checkpoint
-// written before stays valid).
+// OUTDIR/diagnostics.csv. Holds OUTDIR/.swell.lock while it runs. Throws std::invalid_argument
+// for a folder in use or holding another run (unless overwrite), or a checkpoint of another
+// case; Interrupted (apps/stop_signals.hpp) after SIGINT/SIGTERM; InstabilityError if the run blows
+// up (the last checkpoint written before stays valid).
 RunSummary run_case(const CaseSpec& spec, const RunOptions& options);
 
 }  // namespace swell

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -17,9 +18,12 @@
 
 #include "apps/case_runner.hpp"
 #include "apps/gauge_set.hpp"
+#include "apps/stop_signals.hpp"
+#include "io/case_identity.hpp"
 #include "io/gauge_csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/model_names.hpp"
+#include "io/run_folder.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
 #include "swell/version.hpp"
@@ -79,7 +83,20 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   if (opt.restart && !fs::exists(out / "checkpoint.h5") && !fs::exists(out / "checkpoint.h5.prev"))
     throw std::invalid_argument("cannot restart: no checkpoint in " + out_dir +
                                 " (expected checkpoint.h5 written by an earlier swell run)");
-  fs::create_directories(out / "vtk");
+  // One run per folder at a time, for the whole run; a new run never mixes with an old one.
+  const OutputLock lock(out_dir);
+  if (!opt.restart && !opt.overwrite) {
+    const auto old = run_files(out_dir);
+    if (!old.empty()) {
+      std::string list;
+      for (std::size_t i = 0; i < old.size() && i < 4; ++i) list += (i ? ", " : "") + old[i];
+      if (old.size() > 4) list += ", ... (" + std::to_string(old.size()) + " files)";
+      throw std::invalid_argument("output folder " + out_dir + " already holds a run (" + list +
+                                  "): use --overwrite to replace it, --restart " + out_dir +
+                                  " to continue it, or -o to choose another folder");
+    }
+  }
+  const CaseTag tag{case_identity(spec), spec.name, spec.file};
 
   const auto wall0 = std::chrono::steady_clock::now();
   CaseSetup<D> setup = setup_case<D>(spec);
@@ -105,6 +122,9 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   for (std::size_t b = 0; b < setup.bodies.size(); ++b)
     gctx.body_ids[setup.bodies[b].name] = static_cast<int>(b);
   const RunMetadata meta = make_metadata(spec, setup, sum);
+  // The set-up worked: only now is an earlier run's output removed (--overwrite).
+  if (!opt.restart && opt.overwrite) remove_run_files(out_dir);
+  fs::create_directories(out / "vtk");
 
   // Fresh start or continuation from the last valid checkpoint.
   std::map<std::string, double> schedule;
@@ -125,6 +145,18 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     sim.emplace(make_simulation<D>(setup, std::move(c.particles)));
     sim->restore(c.clock);
     sim->restore_hooks(c.schedule);
+    if (c.tag.identity.empty())
+      throw std::invalid_argument(
+          ck +
+          " does not say which case wrote it (a checkpoint of an older Swell): restart "
+          "needs a checkpoint written by this version; run the case afresh with --overwrite");
+    if (c.tag.identity != tag.identity)
+      throw std::invalid_argument(
+          ck + " was written by case '" + c.tag.name + "' (" + c.tag.file + "), and " + spec.file +
+          " differs from it (case text or an input file other than time.end; case identity " +
+          tag.identity.substr(0, 12) + " against " + c.tag.identity.substr(0, 12) +
+          "): a restart continues the case the run was started with; run this one with "
+          "--overwrite or -o another folder");
     schedule = c.schedule;
     resume_after = c.clock.time;
     sum.restarted_from = c.clock.time;
@@ -145,6 +177,9 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     diag_timer.next = schedule.at("next_diagnostics");
     ck_timer.next = schedule.at("next_checkpoint");
     snapshot = static_cast<int>(schedule.at("snapshot"));
+    // VTK snapshots from after the checkpoint are written again (same numbers); none of a
+    // later number may outlive the restart unlisted.
+    remove_vtk_snapshots_from(out_dir, spec.name, snapshot);
   }
 
   // Outputs (continued after the checkpoint time on restart).
@@ -160,10 +195,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   const std::string h5_path = (out / (spec.name + ".h5")).string();
   if (spec.hdf5) {
     if (opt.restart) {
-      bool recreated = false;
-      h5.emplace(Hdf5RunFile::open_for_append(h5_path, meta, resume_after, &recreated));
-      if (recreated)
-        log << "  warning: " << h5_path << " was unreadable; kept as .corrupt, started anew\n";
+      h5.emplace(Hdf5RunFile::open_for_append(h5_path, meta, resume_after));
     } else {
       h5.emplace(Hdf5RunFile::create(h5_path, meta));
     }
@@ -222,7 +254,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     sim->save_hooks(s);
     diag.flush();
     gauges.flush();
-    write_checkpoint<D>(ck_path, sim->particles(), sim->clock(), s);
+    write_checkpoint<D>(ck_path, sim->particles(), sim->clock(), s, tag);
     sum.output_seconds += omp_get_wtime() - t0;
   };
   // Everything due at the current time, in a fixed order.
@@ -250,6 +282,19 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   const long step0 = sim->steps();
   const double time0 = sim->time();
   while (sim->time() < t_end) {
+    if (const int sig = stop_requested()) {
+      // SIGINT/SIGTERM: everything consistent on disk at this step, then leave.
+      if (opt.progress && tty) std::fprintf(stderr, "\n");
+      write_checkpoint_now();
+      std::ostringstream m;
+      m << "stopped by "
+        << (sig == SIGINT    ? "SIGINT"
+            : sig == SIGTERM ? "SIGTERM"
+                             : "a signal")
+        << " at t = " << sim->time() << " s, step " << sim->steps() << "; checkpoint " << ck_path
+        << " written\ncontinue with: swell run " << spec.file << " --restart " << out_dir;
+      throw Interrupted(sig, m.str());
+    }
     sim->step();
     if (gauges.averages()) gauges.accumulate(sim->dt(), sim->particles(), sim->pressure());
     outputs(sim->time() >= t_end);
@@ -302,7 +347,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     << "  output:         " << out_dir << " (" << sum.snapshots << " snapshots, " << pvd.path()
     << ")\n";
   log << s.str();
-  std::ofstream(out / "run_summary.txt") << s.str();
+  write_file_atomically((out / "run_summary.txt").string(), s.str());
   return sum;
 }
 

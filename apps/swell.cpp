@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <csignal>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -13,8 +15,10 @@
 #include "apps/fill_command.hpp"
 #include "apps/foam_command.hpp"
 #include "apps/probe_command.hpp"
+#include "apps/stop_signals.hpp"
 #include "apps/validate_command.hpp"
 #include "io/case_file.hpp"
+#include "io/hdf5_file.hpp"
 #include "solver/time/simulation.hpp"
 #include "swell/version.hpp"
 #include "validation/validation_manifest.hpp"
@@ -25,9 +29,34 @@ constexpr int kExitInput = 2;     // the case file or the command line is wrong
 constexpr int kExitUnstable = 3;  // the run blew up
 constexpr int kExitOther = 1;
 
+// Option checks with short messages (CLI::PositiveNumber prints the whole double range).
+const CLI::Validator kCount(
+    [](std::string& s) -> std::string {
+      char* end = nullptr;
+      const long v = std::strtol(s.c_str(), &end, 10);
+      if (s.empty() || *end != '\0' || v < 1)
+        return "expected a whole number >= 1, got '" + s + "'";
+      return {};
+    },
+    "N>=1");
+const CLI::Validator kPositive(
+    [](std::string& s) -> std::string {
+      char* end = nullptr;
+      const double v = std::strtod(s.c_str(), &end);
+      if (s.empty() || *end != '\0' || !(v > 0.0) || !std::isfinite(v))
+        return "expected a number > 0, got '" + s + "'";
+      return {};
+    },
+    "X>0");
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // No HDF5 clean-up at exit (it can crash after a failed write), and a file size limit
+  // (ulimit -f) makes writes fail with EFBIG, reported like a full disk, instead of killing.
+  swell::hdf5_no_atexit();
+  std::signal(SIGXFSZ, SIG_IGN);
+
   CLI::App app{"Swell: weakly-compressible SPH for coastal and hydraulic engineering"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("swell ") + SWELL_VERSION);
@@ -38,12 +67,15 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "run a case file to its end time");
   run->add_option("case", case_path, "case file (YAML)")->required();
   run->add_option("-o,--out", out_dir, "output folder (default: out/<case name>)");
-  run->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+  run->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")->check(kCount);
   run->add_flag("-q,--quiet", quiet, "no progress line");
   std::string restart_dir;
-  run->add_option("--restart", restart_dir,
-                  "continue the run in this output folder from its last checkpoint");
+  bool overwrite = false;
+  auto* restart_opt = run->add_option(
+      "--restart", restart_dir, "continue the run in this output folder from its last checkpoint");
+  run->add_flag("--overwrite", overwrite,
+                "replace the run the output folder already holds (else such a folder is refused)")
+      ->excludes(restart_opt);
 
   std::string fill_case, fill_out;
   int fill_threads = 0;
@@ -52,7 +84,7 @@ int main(int argc, char** argv) {
   fill->add_option("case", fill_case, "case file (YAML)")->required();
   fill->add_option("-o,--out", fill_out, "output folder (default: out/<case name>)");
   fill->add_option("-t,--threads", fill_threads, "OpenMP threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(kCount);
 
   std::string probe_dir, probe_at, probe_normal, probe_kind = "pressure", probe_out;
   double probe_offset = -1.0;
@@ -79,9 +111,9 @@ int main(int argc, char** argv) {
   compare->add_option("-o,--out", cmp.out_dir, "output folder")->required();
   compare->add_option("--map", cmp.map, "GAUGE=COLUMN: reference column of a gauge (repeatable)");
   compare->add_option("--time-scale", cmp.time_scale, "normalise run times: t * scale")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   compare->add_option("--value-scale", cmp.value_scale, "normalise run values: v * scale")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   compare->add_option("--window", cmp_window, "metric window t0,t1 (scaled time)");
   compare->add_option("--peak-window", cmp_peak_window, "peak window t0,t1 (default: --window)");
   auto* cmp_arrival_opt =
@@ -98,11 +130,10 @@ int main(int argc, char** argv) {
   validate->add_option("--resolution", val_res, "SPH dp list d1,d2 [m] (default: manifest's)");
   validate->add_option("--cell-size", val_cells, "OpenFOAM cell sizes c1,c2 [m]");
   validate->add_option("-o,--out", val.out_dir, "output folder (default: out/validate/NAME)");
-  validate->add_option("-t,--threads", val.threads, "OpenMP threads for SPH runs")
-      ->check(CLI::PositiveNumber);
-  validate->add_option("--np", val.np, "OpenFOAM processes")->check(CLI::PositiveNumber);
+  validate->add_option("-t,--threads", val.threads, "OpenMP threads for SPH runs")->check(kCount);
+  validate->add_option("--np", val.np, "OpenFOAM processes")->check(kCount);
   validate->add_option("--end", val.end_time, "end time of fresh runs [s] (shortened runs)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   validate->add_flag("--save-results", val.save_results,
                      "copy fresh results into validation/NAME/results/ (to commit them)");
 
@@ -113,15 +144,14 @@ int main(int argc, char** argv) {
   foam->add_option("case", foam_case, "case file (YAML)")->required();
   foam->add_option("-o,--out", foam_opt.out_dir, "case folder (default: out/<case name>_foam)");
   auto* foam_cell =
-      foam->add_option("--cell", foam_opt.cell_size, "cell size [m]")->check(CLI::PositiveNumber);
+      foam->add_option("--cell", foam_opt.cell_size, "cell size [m]")->check(kPositive);
   foam->add_option("--cells-per-dp", foam_opt.cells_per_dp, "cell = dp / K (default 1)")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->excludes(foam_cell);
   foam->add_option("--end", foam_opt.end_time, "end time [s] (default: the case's)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   foam->add_flag("--run", foam_opt.run, "run it (blockMesh ... interFoam) and convert the gauges");
-  foam->add_option("--np", foam_opt.np, "processes (decomposePar + mpirun)")
-      ->check(CLI::PositiveNumber);
+  foam->add_option("--np", foam_opt.np, "processes (decomposePar + mpirun)")->check(kCount);
 
   swell::BenchOptions bench_opt;
   swell::BenchSingleOptions bench_single;
@@ -134,11 +164,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"b2d", "b3d", "b3d_fine", "b2d_mdbc", "b3d_mdbc"}));
   bench->add_option("--threads", bench_threads, "thread counts t1,t2 (default 1,2)");
   bench->add_option("--repeats", bench_opt.repeats, "runs per point; medians are reported")
-      ->check(CLI::PositiveNumber);
+      ->check(kCount);
   bench->add_flag("--sweep", bench_opt.sweep, "B3D over dp (N ~1e4..1e6): cost per particle-step");
   bench->add_option("--sweep-dp", bench_sweep_dp, "sweep dp list d1,d2,... [m]");
   bench->add_option("--sweep-steps", bench_opt.sweep_steps, "timed steps per sweep point")
-      ->check(CLI::PositiveNumber);
+      ->check(kCount);
   bench->add_option("-o,--out", bench_opt.out_dir, "output folder (default out/bench)");
   bench->add_option("--bench-dir", bench_opt.bench_dir, "folder holding cases/b2d.yaml");
   auto* single = bench->add_option("--single", bench_single.case_file,
@@ -153,7 +183,21 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    if (app.get_subcommands().empty()) {
+      // No command chosen: say what was wrong, then list the commands.
+      const std::string first = argc > 1 ? argv[1] : "";
+      if (!first.empty() && first[0] != '-')
+        std::cerr << "error: unknown command '" << first << "'\n\n";
+      else if (argc > 1)
+        std::cerr << "error: " << e.what() << "\n\n";
+      else
+        std::cerr << "error: a command is required\n\n";
+      std::cerr << app.help();
+    } else {
+      app.exit(e);
+    }
+    return kExitInput;  // every option error is bad input (exit 2)
   }
 
   try {
@@ -168,8 +212,10 @@ int main(int argc, char** argv) {
         opt.restart = true;
       }
       opt.out_dir = out_dir;
+      opt.overwrite = overwrite;
       opt.threads = threads;
       opt.progress = !quiet;
+      swell::install_stop_handlers();
       swell::run_case(spec, opt);
     } else if (*fill) {
       const swell::CaseSpec spec = swell::load_case_file(fill_case);
@@ -228,6 +274,9 @@ int main(int argc, char** argv) {
       const swell::CaseSpec spec = swell::load_case_file(foam_case);
       swell::run_foam_command(spec, foam_opt, std::cout);
     }
+  } catch (const swell::Interrupted& e) {
+    std::cerr << "swell: " << e.what() << "\n";
+    return e.exit_code();
   } catch (const swell::CaseError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitInput;

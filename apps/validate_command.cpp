@@ -254,6 +254,7 @@ void run_sph(const Manifest& m, double dp, double end_time, const std::string& d
   log << "validate: SPH " << spec.name << " at dp = " << dp << " m -> " << dir << "\n";
   RunOptions ro;
   ro.out_dir = dir;
+  ro.overwrite = true;  // validate owns its run folders
   ro.threads = threads;
   ro.progress = progress;
   std::ostringstream summary;

@@ -24,6 +24,7 @@
 #include "io/case_motion.hpp"
 #include "io/case_parse_util.hpp"
 #include "io/model_names.hpp"
+#include "io/safe_name.hpp"
 
 namespace swell {
 
@@ -235,7 +236,10 @@ CaseSpec CaseReader::read(const YAML::Node& root) {
 
   spec.dp = number_if(
       require(root, "", "dp"), "dp", [](double v) { return v > 0.0; }, "a number > 0");
-  if (auto node = find(root, "name")) spec.name = name(*node, "name");
+  if (auto node = find(root, "name")) {
+    spec.name = name(*node, "name");
+    expect(is_safe_name(spec.name), *node, "name", safe_name_rule());
+  }
   if (auto node = find(root, "physics")) read_physics(*node, "physics", spec);
   read_time(require(root, "", "time"), "time", spec);
   if (auto node = find(root, "domain")) read_domain(*node, "domain", spec);
@@ -573,8 +577,7 @@ YAML::Node parse_yaml(const std::string& text, const std::string& file) {
 }
 
 std::string default_case_name(const std::string& file_label) {
-  const std::string stem = std::filesystem::path(file_label).stem().string();
-  return stem.empty() ? "case" : stem;
+  return make_safe_name(std::filesystem::path(file_label).stem().string());
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "io/gauge_csv.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -39,6 +41,19 @@ GaugeCsvFile::GaugeCsvFile(const std::string& path, const std::vector<std::strin
   if (!out_) throw std::runtime_error("cannot write gauge file " + path);
 }
 
+void GaugeCsvFile::check() {
+  // errno is read right after the failing write (the buffer spills inside write_row).
+  if (!out_) {
+    if (error_ == 0) error_ = errno != 0 ? errno : EIO;
+    throw std::runtime_error("cannot write gauge file " + path_ + ": " + std::strerror(error_));
+  }
+}
+
+void GaugeCsvFile::flush() {
+  if (out_) out_.flush();
+  check();
+}
+
 void GaugeCsvFile::write_row(double time, const std::vector<double>& values,
                              const std::vector<bool>& present) {
   char buf[40];
@@ -52,6 +67,7 @@ void GaugeCsvFile::write_row(double time, const std::vector<double>& values,
     }
   }
   out_ << '\n';
+  check();
 }
 
 std::vector<std::string> gauge_columns(const GaugeSpec& g, int dim) {

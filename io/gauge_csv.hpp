@@ -25,13 +25,17 @@ class GaugeCsvFile {
 
   // One row; a column whose `present` flag is false (gauge not due at this time) stays empty.
   void write_row(double time, const std::vector<double>& values, const std::vector<bool>& present);
-  void flush() { out_.flush(); }
+  // Writes the buffered rows. This and write_row throw naming the file and the system's
+  // reason once a write has failed (disk full, file size limit).
+  void flush();
   const std::string& path() const { return path_; }
 
  private:
   std::string path_;
   std::ofstream out_;
   std::size_t columns_ = 0;
+  int error_ = 0;  // errno of the first failed write
+  void check();
 };
 
 }  // namespace swell

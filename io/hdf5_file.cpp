@@ -6,10 +6,14 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
 
 #include "io/hdf5_objects.hpp"
@@ -91,25 +95,6 @@ RunMetadata read_metadata_group(const Loc& root) {
   return m;
 }
 
-// Deletes the snapshots later than t_keep and those a crash left without their attributes.
-void prune_snapshots(const Loc& root, double t_keep) {
-  Handle pg = open_group(root, "particles");
-  const Loc particles = root.at(pg.get(), "particles");
-  for (const auto& name : child_names(particles)) {
-    bool keep = false;
-    {
-      Handle g(H5Gopen2(particles.id, name.c_str(), H5P_DEFAULT), H5Gclose);
-      if (g.valid()) {
-        const Loc snap = particles.at(g.get(), name);
-        if (has_attr(snap, "time") && has_attr(snap, "step"))
-          keep = read_attr<double>(snap, "time") <= t_keep + kTimeSlack;
-      }
-    }
-    if (!keep && H5Ldelete(particles.id, name.c_str(), H5P_DEFAULT) < 0)
-      fail_h5(root.file, "group '" + particles.child(name) + "'", "cannot be deleted");
-  }
-}
-
 void rename_or_fail(const std::string& from, const std::string& to) {
   std::error_code ec;
   fs::rename(from, to, ec);
@@ -139,121 +124,202 @@ bool checkpoint_is_complete(const std::string& path) {
   }
 }
 
+// Removes `path` if it exists; failures are ignored (used on error paths and for stale files).
+void remove_quietly(const std::string& path) {
+  std::error_code ec;
+  fs::remove(path, ec);
+}
+
+// Writes an HDF5 file crash-safely: `fill` writes into path + ".tmp", which is then closed,
+// synced and renamed over `path` (and the folder synced). On any failure the temporary file
+// is removed and `path` is left as it was. `before_rename` runs just before the rename.
+template <class Fill, class Hook>
+void write_h5_atomically(const std::string& path, Fill&& fill, Hook&& before_rename) {
+  const std::string tmp = path + ".tmp";
+  try {
+    {
+      Handle f(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+      if (!f.valid()) fail_h5(tmp, "", "cannot be created");
+      fill(Loc{f.get(), tmp, "/"});
+      if (H5Fflush(f.get(), H5F_SCOPE_GLOBAL) < 0) fail_h5(tmp, "", "cannot be flushed");
+      if (!f.close()) fail_h5(tmp, "", "cannot be closed");
+    }
+    sync_path(tmp, false);
+    before_rename();
+    rename_or_fail(tmp, path);
+  } catch (...) {
+    remove_quietly(tmp);
+    throw;
+  }
+  const fs::path dir = fs::path(path).parent_path();
+  sync_path(dir.empty() ? "." : dir.string(), true);
+}
+
+// "snapshot-data:3" -> {1, 3}; "snapshot-index:2" -> {2, 2}; anything else: no hook.
+std::pair<int, long> kill_hook_from_env() {
+  const char* v = std::getenv("SWELL_TEST_KILL_AT");
+  if (!v) return {0, 0};
+  const std::string s(v);
+  const auto colon = s.find(':');
+  if (colon == std::string::npos) return {0, 0};
+  const std::string point = s.substr(0, colon);
+  const long n = std::atol(s.c_str() + colon + 1);
+  if (n <= 0) return {0, 0};
+  if (point == "snapshot-data") return {1, n};
+  if (point == "snapshot-index") return {2, n};
+  return {0, 0};
+}
+
 }  // namespace
 
 // ---- Run file -----------------------------------------------------------------------------
 
+std::string snapshot_folder(const std::string& run_file) {
+  return (fs::path(run_file).parent_path() / "snapshots").string();
+}
+
+Hdf5RunFile::Hdf5RunFile(std::string path, RunMetadata meta)
+    : path_(std::move(path)), meta_(std::move(meta)) {
+  folder_ = snapshot_folder(path_);
+  stem_ = fs::path(path_).stem().string();
+  std::tie(kill_point_, kill_at_) = kill_hook_from_env();
+}
+
+std::string Hdf5RunFile::snapshot_file(long step) const {
+  return "snapshots/" + stem_ + "_" + snapshot_name(step) + ".h5";
+}
+
+namespace {
+
+// The step of a snapshot file of run `stem` ("<stem>_0000000100.h5" or that + ".tmp"), or -1.
+long snapshot_file_step(const std::string& file, const std::string& stem, bool* tmp) {
+  std::string f = file;
+  *tmp = f.ends_with(".tmp");
+  if (*tmp) f.resize(f.size() - 4);
+  const std::string head = stem + "_";
+  if (!f.starts_with(head) || !f.ends_with(".h5") || f.size() != head.size() + 10 + 3) return -1;
+  long step = 0;
+  for (std::size_t i = head.size(); i < head.size() + 10; ++i) {
+    if (f[i] < '0' || f[i] > '9') return -1;
+    step = step * 10 + (f[i] - '0');
+  }
+  return step;
+}
+
+}  // namespace
+
 Hdf5RunFile Hdf5RunFile::create(const std::string& path, const RunMetadata& meta) {
-  QuietErrors quiet;
-  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-  if (!f.valid()) fail_h5(path, "", "cannot be created");
-  const Loc root{f.get(), path, "/"};
-  write_metadata(root, meta);
-  create_group(root, "particles");
-  if (H5Fflush(f.get(), H5F_SCOPE_LOCAL) < 0) fail_h5(path, "", "cannot be flushed");
-  return Hdf5RunFile(path, f.release());
+  return open_for_append(path, meta, -std::numeric_limits<double>::infinity());
 }
 
 Hdf5RunFile Hdf5RunFile::open_for_append(const std::string& path, const RunMetadata& meta,
-                                         double t_keep, bool* recreated) {
+                                         double t_keep) {
   QuietErrors quiet;
-  if (recreated) *recreated = false;
-  bool usable = file_exists(path);
-  if (usable && ::access(path.c_str(), R_OK | W_OK) != 0)
-    fail(path, "", std::string("cannot be reopened for writing: ") + strerror(errno));
-  Handle f(usable ? H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT) : -1, H5Fclose);
-  if (usable && !f.valid()) {
-    const std::string reason = hdf5_reason();
-    // A file locked by a running writer is not corrupt: do not move it away.
-    if (reason.find("lock") != std::string::npos)
-      fail(path, "", "is locked, probably by a run still writing it (HDF5: " + reason + ")");
-    usable = false;
-  }
-  const Loc root{f.get(), path, "/"};
-  int stored_dim = 0;
-  if (usable) {
-    try {
-      Handle g = open_group(root, "metadata");
-      stored_dim = read_attr<std::int32_t>(root.at(g.get(), "metadata"), "dim");
-    } catch (const std::runtime_error&) {
-      usable = false;
+  Hdf5RunFile run(path, meta);
+  std::error_code ec;
+  fs::create_directories(run.folder_, ec);
+  if (ec) fail(run.folder_, "", "cannot create the snapshots folder: " + ec.message());
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(run.folder_, ec))
+    names.push_back(e.path().filename().string());
+  if (ec) fail(run.folder_, "", "cannot list the snapshots folder: " + ec.message());
+  std::sort(names.begin(), names.end());
+  for (const auto& name : names) {
+    bool tmp = false;
+    const long step = snapshot_file_step(name, run.stem_, &tmp);
+    if (step < 0) continue;  // not one of this run's files
+    const std::string file = (fs::path(run.folder_) / name).string();
+    bool keep = false;
+    double time = 0.0;
+    if (!tmp) {
+      // An unreadable snapshot file can only come from outside interference (every file is
+      // renamed into place once complete); it is treated as not written.
+      int dim = 0;
+      try {
+        dim = read_metadata(file).dim;
+        const auto list = list_snapshots(file);
+        if (list.size() == 1 && list[0].step == step) {
+          time = list[0].time;
+          keep = time <= t_keep + kTimeSlack;
+        }
+      } catch (const std::runtime_error&) {
+        keep = false;
+      }
+      if (dim != 0 && dim != meta.dim)
+        fail(file, "",
+             "holds a " + std::to_string(dim) + "D run; cannot append " + std::to_string(meta.dim) +
+                 "D snapshots");
+    }
+    if (keep) {
+      run.entries_.push_back({step, time});
+    } else {
+      fs::remove(file, ec);
+      if (ec) fail(file, "", "cannot remove this stale snapshot file: " + ec.message());
     }
   }
-  if (usable && stored_dim != meta.dim) {
-    fail(path, "",
-         "holds a " + std::to_string(stored_dim) + "D run; cannot append " +
-             std::to_string(meta.dim) + "D snapshots");
-  }
-  if (usable) {
-    try {
-      prune_snapshots(root, t_keep);
-      if (H5Fflush(f.get(), H5F_SCOPE_LOCAL) < 0) fail_h5(path, "", "cannot be flushed");
-      return Hdf5RunFile(path, f.release());
-    } catch (const std::runtime_error&) {
-      usable = false;
-    }
-  }
-  f.reset();
-  if (file_exists(path)) rename_or_fail(path, path + ".corrupt");
-  if (recreated) *recreated = true;
-  return create(path, meta);
+  run.write_index();
+  return run;
 }
 
-Hdf5RunFile::Hdf5RunFile(Hdf5RunFile&& other) noexcept
-    : path_(std::move(other.path_)), file_(std::exchange(other.file_, -1)) {}
-
-Hdf5RunFile& Hdf5RunFile::operator=(Hdf5RunFile&& other) noexcept {
-  if (this != &other) {
-    Hdf5RunFile old(std::move(*this));  // closes the current file on scope exit
-    path_ = std::move(other.path_);
-    file_ = std::exchange(other.file_, -1);
-  }
-  return *this;
-}
-
-Hdf5RunFile::~Hdf5RunFile() {
-  if (file_ < 0) return;
-  QuietErrors quiet;
-  H5Fclose(file_);
-}
-
-void Hdf5RunFile::close() {
-  if (file_ < 0) return;
-  QuietErrors quiet;
-  if (H5Fclose(std::exchange(file_, -1)) < 0) fail_h5(path_, "", "cannot be closed");
+void Hdf5RunFile::write_index() const {
+  write_h5_atomically(
+      path_,
+      [&](const Loc& root) {
+        write_metadata(root, meta_);
+        Handle pg = create_group(root, "particles");
+        for (const Entry& e : entries_) {
+          const std::string name = snapshot_name(e.step);
+          const std::string target = "/particles/" + name;
+          if (H5Lcreate_external(snapshot_file(e.step).c_str(), target.c_str(), pg.get(),
+                                 name.c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0)
+            fail_h5(root.file, "link '/particles/" + name + "'", "cannot be created");
+        }
+      },
+      [&] {
+        if (kill_point_ == 2 && writes_ == kill_at_) std::raise(SIGKILL);
+      });
 }
 
 template <int D>
 void Hdf5RunFile::write_snapshot(long step, double time, const ParticleSet<D>& ps,
                                  const std::vector<double>& pressure) {
   QuietErrors quiet;
-  if (file_ < 0) fail(path_, "", "write_snapshot on a closed file");
   const std::size_t n = ps.size();
   const std::string name = snapshot_name(step);
-  const Loc root{file_, path_, "/"};
-  Handle pg = open_group(root, "particles");
-  const Loc particles = root.at(pg.get(), "particles");
+  const std::string file = (fs::path(path_).parent_path() / snapshot_file(step)).string();
   if (pressure.size() < n) {
-    fail(path_, "group '" + particles.child(name) + "'",
+    fail(file, "group '/particles/" + name + "'",
          "pressure has " + std::to_string(pressure.size()) + " values for " + std::to_string(n) +
              " active particles");
   }
-  if (H5Lexists(pg.get(), name.c_str(), H5P_DEFAULT) > 0 &&
-      H5Ldelete(pg.get(), name.c_str(), H5P_DEFAULT) < 0)
-    fail_h5(path_, "group '" + particles.child(name) + "'", "cannot be replaced");
-  {
-    Handle g = create_group(particles, name);
-    const Loc snap = particles.at(g.get(), name);
-    // The fields of the table that have a snapshot name, plus the pressure.
-    ps.for_each_field([&](const FieldInfo& f, const auto& a) {
-      if (f.snapshot && ps.enabled(f)) write_column(snap, f.snapshot, a, n, true);
-    });
-    write_column(snap, "p", pressure, n, true);
-    // Attributes last: a group without them was cut short and is skipped by readers.
-    write_attr(snap, "time", time);
-    write_attr<std::int64_t>(snap, "step", step);
-  }
-  if (H5Fflush(file_, H5F_SCOPE_LOCAL) < 0) fail_h5(path_, "", "cannot be flushed");
+  ++writes_;
+  write_h5_atomically(
+      file,
+      [&](const Loc& root) {
+        write_metadata(root, meta_);
+        Handle pg = create_group(root, "particles");
+        const Loc particles = root.at(pg.get(), "particles");
+        Handle g = create_group(particles, name);
+        const Loc snap = particles.at(g.get(), name);
+        // The fields of the table that have a snapshot name, plus the pressure.
+        ps.for_each_field([&](const FieldInfo& f, const auto& a) {
+          if (f.snapshot && ps.enabled(f)) write_column(snap, f.snapshot, a, n, true);
+        });
+        write_column(snap, "p", pressure, n, true);
+        // Attributes last: a group without them was cut short and is skipped by readers.
+        write_attr(snap, "time", time);
+        write_attr<std::int64_t>(snap, "step", step);
+      },
+      [&] {
+        if (kill_point_ == 1 && writes_ == kill_at_) std::raise(SIGKILL);
+      });
+  auto it = std::find_if(entries_.begin(), entries_.end(),
+                         [&](const Entry& e) { return e.step >= step; });
+  if (it != entries_.end() && it->step == step)
+    it->time = time;
+  else
+    entries_.insert(it, {step, time});
+  write_index();
 }
 
 RunMetadata read_metadata(const std::string& path) {
@@ -309,64 +375,61 @@ SnapshotData<D> read_snapshot(const std::string& path, const SnapshotInfo& info)
 
 template <int D>
 void write_checkpoint(const std::string& path, const ParticleSet<D>& ps,
-                      const SimulationClock& clock, const std::map<std::string, double>& schedule) {
+                      const SimulationClock& clock, const std::map<std::string, double>& schedule,
+                      const CaseTag& tag) {
   QuietErrors quiet;
   const std::size_t total = ps.total();
   bool consistent = ps.n_active <= total;
   checkpoint_arrays(ps, [&](const char*, const auto& v) { consistent &= v.size() == total; });
   if (!consistent) fail(path, "", "cannot save a particle set whose arrays differ in size");
 
-  const std::string tmp = path + ".tmp";
-  {
-    Handle f(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-    if (!f.valid()) fail_h5(tmp, "", "cannot be created");
-    const Loc root{f.get(), tmp, "/"};
-    write_attr<std::int32_t>(root, "dim", D);
-    write_attr<std::uint64_t>(root, "n_active", ps.n_active);
-    write_attr<std::uint64_t>(root, "total", total);
-    {
-      Handle g = create_group(root, "particles");
-      const Loc p = root.at(g.get(), "particles");
-      checkpoint_arrays(
-          ps, [&](const char* name, const auto& v) { write_column(p, name, v, total, false); });
-    }
-    {
-      Handle g = create_group(root, "clock");
-      const Loc c = root.at(g.get(), "clock");
-      clock_fields(clock, [&](const char* name, const auto& v) { write_field(c, name, v); });
-    }
-    {
-      Handle g = create_group(root, "schedule");
-      const Loc s = root.at(g.get(), "schedule");
-      std::vector<std::string> names;
-      std::vector<double> values;
-      for (const auto& [name, value] : schedule) {
-        names.push_back(name);
-        values.push_back(value);
-      }
-      write_strings(s, "names", names, false, true);
-      write_column(s, "values", values, values.size(), false);
-    }
-    // Last: a file without this mark was cut short and is never restarted from.
-    write_attr<std::int32_t>(root, "complete", 1);
-    if (H5Fflush(f.get(), H5F_SCOPE_GLOBAL) < 0) fail_h5(tmp, "", "cannot be flushed");
-    if (!f.close()) fail_h5(tmp, "", "cannot be closed");
-  }
-  sync_path(tmp, false);
-
-  // Keep the previous checkpoint as .prev through a hard link, so `path` names a complete
-  // checkpoint at every moment; the final rename replaces it atomically. An incomplete file
-  // at `path` (not written here) is not worth keeping and simply gets replaced.
   const std::string prev = path + ".prev";
-  if (file_exists(path) && checkpoint_is_complete(path)) {
-    std::error_code ec;
-    fs::remove(prev, ec);
-    fs::create_hard_link(path, prev, ec);
-    if (ec) rename_or_fail(path, prev);  // file system without hard links
-  }
-  rename_or_fail(tmp, path);
-  const fs::path dir = fs::path(path).parent_path();
-  sync_path(dir.empty() ? "." : dir.string(), true);
+  write_h5_atomically(
+      path,
+      [&](const Loc& root) {
+        write_attr<std::int32_t>(root, "dim", D);
+        write_attr<std::uint64_t>(root, "n_active", ps.n_active);
+        write_attr<std::uint64_t>(root, "total", total);
+        write_field(root, "case_identity", tag.identity);
+        write_field(root, "case_name", tag.name);
+        write_field(root, "case_file", tag.file);
+        {
+          Handle g = create_group(root, "particles");
+          const Loc p = root.at(g.get(), "particles");
+          checkpoint_arrays(
+              ps, [&](const char* name, const auto& v) { write_column(p, name, v, total, false); });
+        }
+        {
+          Handle g = create_group(root, "clock");
+          const Loc c = root.at(g.get(), "clock");
+          clock_fields(clock, [&](const char* name, const auto& v) { write_field(c, name, v); });
+        }
+        {
+          Handle g = create_group(root, "schedule");
+          const Loc s = root.at(g.get(), "schedule");
+          std::vector<std::string> names;
+          std::vector<double> values;
+          for (const auto& [name, value] : schedule) {
+            names.push_back(name);
+            values.push_back(value);
+          }
+          write_strings(s, "names", names, false, true);
+          write_column(s, "values", values, values.size(), false);
+        }
+        // Last: a file without this mark was cut short and is never restarted from.
+        write_attr<std::int32_t>(root, "complete", 1);
+      },
+      [&] {
+        // Keep the previous checkpoint as .prev through a hard link, so `path` names a
+        // complete checkpoint at every moment; the rename then replaces it atomically. An
+        // incomplete file at `path` (not written here) is not worth keeping.
+        if (file_exists(path) && checkpoint_is_complete(path)) {
+          std::error_code ec;
+          fs::remove(prev, ec);
+          fs::create_hard_link(path, prev, ec);
+          if (ec) rename_or_fail(path, prev);  // file system without hard links
+        }
+      });
 }
 
 template <int D>
@@ -387,6 +450,11 @@ Checkpoint<D> read_checkpoint(const std::string& path) {
   if (n_active > total) fail(path, "attribute 'n_active'", "exceeds the particle count");
 
   Checkpoint<D> c;
+  if (has_attr(root, "case_identity")) {
+    read_field(root, "case_identity", c.tag.identity);
+    read_field(root, "case_name", c.tag.name);
+    read_field(root, "case_file", c.tag.file);
+  }
   auto& ps = c.particles;
   {
     Handle g = open_group(root, "particles");
@@ -457,6 +525,10 @@ std::string latest_valid_checkpoint(const std::string& path) {
                            ") and '" + prev + "' (" + why_prev + ")");
 }
 
+void hdf5_no_atexit() {
+  H5dont_atexit();
+}
+
 // ---- Explicit instantiations --------------------------------------------------------------
 
 template void Hdf5RunFile::write_snapshot<2>(long, double, const ParticleSet<2>&,
@@ -466,9 +538,9 @@ template void Hdf5RunFile::write_snapshot<3>(long, double, const ParticleSet<3>&
 template SnapshotData<2> read_snapshot<2>(const std::string&, const SnapshotInfo&);
 template SnapshotData<3> read_snapshot<3>(const std::string&, const SnapshotInfo&);
 template void write_checkpoint<2>(const std::string&, const ParticleSet<2>&, const SimulationClock&,
-                                  const std::map<std::string, double>&);
+                                  const std::map<std::string, double>&, const CaseTag&);
 template void write_checkpoint<3>(const std::string&, const ParticleSet<3>&, const SimulationClock&,
-                                  const std::map<std::string, double>&);
+                                  const std::map<std::string, double>&, const CaseTag&);
 template Checkpoint<2> read_checkpoint<2>(const std::string&);
 template Checkpoint<3> read_checkpoint<3>(const std::string&);
 

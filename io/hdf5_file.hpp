@@ -1,5 +1,16 @@
 // HDF5 output: one run file (metadata + particle snapshots) and crash-safe checkpoints.
 //
+// Snapshots are stored one HDF5 file each, written crash-safely (temporary name, fsync,
+// rename), and the run file is an index rewritten the same way after each snapshot, so a kill
+// at any moment loses at most the snapshot being written:
+//   OUTDIR/snapshots/<stem>_<step, 10 digits>.h5   /metadata and the one snapshot
+//                                                  /particles/<step>, as below
+//   OUTDIR/<stem>.h5 (the run file)                /metadata and /particles/<step> for every
+//                                                  snapshot, as HDF5 external links into the
+//                                                  files above (h5py and h5dump follow them)
+// where <stem> is the run file's name without .h5. A restart rebuilds the index from the
+// snapshot files, never from the previous index.
+//
 // Run file layout (readable with h5py or h5dump, strings are UTF-8):
 //   /metadata                      group; attributes case_name, case_file, version, kernel,
 //                                  dim, dp, h, c0, rho0, n_fluid, n_boundary, body_names[]
@@ -10,7 +21,8 @@
 //       body (N uint16), id (N uint32) over the active particles only
 //
 // Checkpoint layout (a separate file, everything needed to continue a run bit for bit):
-//   /               attributes dim, n_active, total, complete (=1, written last)
+//   /               attributes dim, n_active, total, case_identity, case_name, case_file,
+//                   complete (=1, written last)
 //   /particles      every enabled field of ParticleSet's field table under its name (pos, vel,
 //                   rho, pos_prev, vel_prev, rho_prev, mass, role, body, id, and pos_ref in
 //                   runs with moving bodies), over the whole storage [0, total()) in the
@@ -44,44 +56,53 @@ struct RunMetadata {
   std::vector<std::string> body_names;  // index = body id
 };
 
-// One open run file. Movable, not copyable; the file is closed by the destructor.
+// The run file of a run being written: its metadata and the snapshots written so far. Each
+// write_snapshot writes one snapshot file and then the index (see above); nothing stays open
+// between calls.
 class Hdf5RunFile {
  public:
-  // Creates `path` (truncating any existing file) and writes `meta` to /metadata.
+  // Starts a new run file at `path` (replacing an existing one) and removes the snapshot files
+  // an earlier run file of the same name left in the snapshots folder.
   static Hdf5RunFile create(const std::string& path, const RunMetadata& meta);
 
-  // For a restarted run: opens `path` and deletes the snapshots later than t_keep (and any
-  // snapshot left incomplete by a crash), so the series continues without duplicates. If
-  // the file is missing, a fresh one is created; if it cannot be opened (corrupt after a
-  // crash), it is renamed to path + ".corrupt" and a fresh one is created. In both cases
-  // *recreated is set to true. Throws if the file holds a run of another dimension.
+  // For a restarted run: keeps the complete snapshot files with time <= t_keep, deletes later
+  // and unfinished ones, and rewrites the index listing the kept ones, so the series continues
+  // without duplicates or gaps whatever state the previous index was left in. Throws if a
+  // snapshot file holds a run of another dimension.
   static Hdf5RunFile open_for_append(const std::string& path, const RunMetadata& meta,
-                                     double t_keep, bool* recreated = nullptr);
+                                     double t_keep);
 
-  Hdf5RunFile(Hdf5RunFile&& other) noexcept;
-  Hdf5RunFile& operator=(Hdf5RunFile&& other) noexcept;
-  Hdf5RunFile(const Hdf5RunFile&) = delete;
-  Hdf5RunFile& operator=(const Hdf5RunFile&) = delete;
-  ~Hdf5RunFile();
-
-  // Writes the active particles [0, ps.size()) as /particles/<step>, then flushes the file.
-  // `pressure` must hold at least ps.size() values. A snapshot of the same step already in
-  // the file is replaced.
+  // Writes the active particles [0, ps.size()) as snapshot `step`, then the index. `pressure`
+  // must hold at least ps.size() values. A snapshot of the same step is replaced.
   template <int D>
   void write_snapshot(long step, double time, const ParticleSet<D>& ps,
                       const std::vector<double>& pressure);
 
-  // Closes now, reporting errors (the destructor cannot). Safe to call twice.
-  void close();
-  bool is_open() const { return file_ >= 0; }
   const std::string& path() const { return path_; }
+  std::size_t snapshot_count() const { return entries_.size(); }
+
+  struct Entry {
+    long step = 0;
+    double time = 0;
+  };
 
  private:
-  Hdf5RunFile(std::string path, std::int64_t file) : path_(std::move(path)), file_(file) {}
+  Hdf5RunFile(std::string path, RunMetadata meta);
+  std::string snapshot_file(long step) const;  // relative to the run file's folder
+  void write_index() const;
 
-  std::string path_;
-  std::int64_t file_ = -1;  // hid_t (an int64_t since HDF5 1.10); -1 when closed
+  std::string path_, folder_, stem_;
+  RunMetadata meta_;
+  std::vector<Entry> entries_;  // by step
+  // Test hook (SWELL_TEST_KILL_AT=snapshot-data:N or snapshot-index:N): SIGKILL this process
+  // in the N-th snapshot write, after the snapshot's (or the index's) temporary file is
+  // complete and before its rename.
+  int kill_point_ = 0;  // 0 none, 1 snapshot-data, 2 snapshot-index
+  long kill_at_ = 0, writes_ = 0;
 };
+
+// The folder (next to the run file) that holds its snapshot files.
+std::string snapshot_folder(const std::string& run_file);
 
 RunMetadata read_metadata(const std::string& path);
 
@@ -108,8 +129,14 @@ struct SnapshotData {
 template <int D>
 SnapshotData<D> read_snapshot(const std::string& path, const SnapshotInfo& info);
 
+// What a checkpoint says about the case that wrote it (io/case_identity.hpp).
+struct CaseTag {
+  std::string identity, name, file;
+};
+
 template <int D>
 struct Checkpoint {
+  CaseTag tag;  // empty identity: written without one (tests, older versions)
   ParticleSet<D> particles;
   SimulationClock clock;
   std::map<std::string, double> schedule;
@@ -120,7 +147,8 @@ struct Checkpoint {
 // one complete checkpoint among `path` and path + ".prev".
 template <int D>
 void write_checkpoint(const std::string& path, const ParticleSet<D>& ps,
-                      const SimulationClock& clock, const std::map<std::string, double>& schedule);
+                      const SimulationClock& clock, const std::map<std::string, double>& schedule,
+                      const CaseTag& tag = {});
 
 // Throws if the file is missing, unreadable, incomplete or holds another dimension.
 template <int D>
@@ -132,5 +160,11 @@ int checkpoint_dimension(const std::string& path);
 // `path` if it reads back completely, else path + ".prev" if that does; throws otherwise
 // (the message names both files and why each was rejected).
 std::string latest_valid_checkpoint(const std::string& path);
+
+// Keeps HDF5 from registering its atexit clean-up, which can crash (SIGSEGV) when a write
+// failed (disk full) and files are left half-closed. Call first thing in main(); every file
+// is closed by its owner before exit, and the files that matter were renamed into place only
+// when complete.
+void hdf5_no_atexit();
 
 }  // namespace swell

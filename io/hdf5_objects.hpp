@@ -51,6 +51,15 @@ inline std::string hdf5_reason() {
   std::string reason;
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &reason);
   H5Eclear2(H5E_DEFAULT);
+  // A failed system call comes as "file write failed: time = ..., errno = 27, error message =
+  // 'File too large', buf = ...": keep its head and the system's message.
+  const std::string tag = "error message = '";
+  const auto k = reason.find(tag);
+  if (k != std::string::npos) {
+    const auto end = reason.find('\'', k + tag.size());
+    reason = reason.substr(0, reason.find(':')) + ": " +
+             reason.substr(k + tag.size(), end == std::string::npos ? end : end - k - tag.size());
+  }
   return reason;
 }
 

@@ -14,7 +14,9 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -25,14 +27,19 @@ namespace swell {
 
 void write_file_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
+  std::error_code ec;
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error("cannot write " + tmp);
+    if (!f) throw std::runtime_error("cannot write " + tmp + ": " + std::strerror(errno));
     f << text;
     f.flush();
-    if (!f) throw std::runtime_error("error while writing " + tmp);
+    if (!f) {
+      const int err = errno;
+      f.close();
+      std::filesystem::remove(tmp, ec);
+      throw std::runtime_error("error while writing " + tmp + ": " + std::strerror(err));
+    }
   }
-  std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
 }
@@ -136,8 +143,12 @@ void write_vtp(const std::string& path, const ParticleSet<D>& ps,
   writer->SetFileName(tmp.c_str());
   writer->SetInputData(poly);
   writer->SetDataModeToBinary();
-  if (writer->Write() != 1) throw std::runtime_error("VTK writer failed on " + tmp);
   std::error_code ec;
+  if (writer->Write() != 1) {
+    const int err = errno;  // the failed write's reason (VTK keeps only its own codes)
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error("VTK writer failed on " + tmp + ": " + std::strerror(err));
+  }
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
 }

@@ -151,12 +151,14 @@ std::string paddle_case(double t_end, double amplitude = 0.01) {
   return s.str();
 }
 
-RunSummary run(const std::string& text, const fs::path& dir, bool restart, int threads) {
+RunSummary run(const std::string& text, const fs::path& dir, bool restart, int threads,
+               bool overwrite = false) {
   const CaseSpec spec = parse_case_text(text, "paddle.yaml");
   RunOptions opt;
   opt.out_dir = dir.string();
   opt.progress = false;
   opt.restart = restart;
+  opt.overwrite = overwrite;
   opt.threads = threads;
   std::ostringstream log;
   opt.log = &log;
@@ -193,7 +195,7 @@ TEST(MovingBodies, RestartWithMotionIsBitwise) {
   EXPECT_GT(moved, 0.002);
   for (const char* f : {"gauges_force.csv", "gauges_height.csv", "diagnostics.csv"})
     EXPECT_EQ(read_text(a / f), read_text(b / f)) << f;
-  EXPECT_EQ(run(paddle_case(0.12), a, false, 1).excluded.total(), 0u);
+  EXPECT_EQ(run(paddle_case(0.12), a, false, 1, true).excluded.total(), 0u);
 }
 
 TEST(MovingBodies, RestartRefusesAChangedMotion) {

@@ -1,10 +1,8 @@
 // A run killed with SIGKILL at an arbitrary moment (possibly while writing a checkpoint or a
 // snapshot) continues with `swell run --restart` and ends exactly where an uninterrupted run
 // ends. Runs the real `swell` binary in a child process.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -14,6 +12,7 @@
 #include <thread>
 
 #include "io/hdf5_file.hpp"
+#include "tests/child_process.hpp"
 
 namespace swell {
 namespace {
@@ -29,26 +28,8 @@ const char* kCase =
     "gauges:\n  - {name: front, kind: front}\n"
     "output: {every: 0.005, vtk: true, hdf5: true, checkpoint_every: 0.002, gauge_every: 0.001}\n";
 
-pid_t spawn(const std::vector<std::string>& args) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    std::vector<char*> argv;
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    const int devnull = ::open("/dev/null", O_WRONLY);
-    dup2(devnull, 1);
-    dup2(devnull, 2);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
-int wait_exit(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-}
+using test::spawn;
+using test::wait_exit;
 
 TEST(CrashRestart, KilledRunContinuesToTheSameEnd) {
   const std::string swell = std::string(SWELL_BINARY_DIR) + "/swell";

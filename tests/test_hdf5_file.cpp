@@ -217,7 +217,7 @@ TEST_F(Hdf5Test, EmptySnapshot) {
 TEST_F(Hdf5Test, MetadataRoundTrip) {
   const std::string path = file("meta.h5");
   const auto m = sample_metadata(3);
-  Hdf5RunFile::create(path, m).close();
+  Hdf5RunFile::create(path, m);
   const auto r = read_metadata(path);
   EXPECT_EQ(r.case_name, m.case_name);
   EXPECT_EQ(r.case_file, m.case_file);
@@ -234,7 +234,7 @@ TEST_F(Hdf5Test, MetadataRoundTrip) {
   EXPECT_EQ(r.body_names, m.body_names);
 
   RunMetadata bare;  // empty strings and no bodies
-  Hdf5RunFile::create(path, bare).close();
+  Hdf5RunFile::create(path, bare);
   const auto rb = read_metadata(path);
   EXPECT_TRUE(rb.case_text.empty());
   EXPECT_TRUE(rb.kernel.empty());
@@ -249,10 +249,9 @@ TEST_F(Hdf5Test, OpenForAppendDropsLaterSnapshots) {
     auto run = Hdf5RunFile::create(path, sample_metadata(2));
     for (int k = 0; k < 4; ++k) run.write_snapshot<2>(10 * k, 0.1 * k, ps, p);
   }
-  bool recreated = true;
   {
-    auto run = Hdf5RunFile::open_for_append(path, sample_metadata(2), 0.1, &recreated);
-    EXPECT_FALSE(recreated);
+    auto run = Hdf5RunFile::open_for_append(path, sample_metadata(2), 0.1);
+    EXPECT_EQ(run.snapshot_count(), 2u);
     run.write_snapshot<2>(15, 0.14, ps, p);
     run.write_snapshot<2>(15, 0.15, ps, p);  // the same step again replaces it
   }
@@ -265,28 +264,62 @@ TEST_F(Hdf5Test, OpenForAppendDropsLaterSnapshots) {
   EXPECT_EQ(read_metadata(path).case_text, sample_metadata(2).case_text);
 }
 
-TEST_F(Hdf5Test, OpenForAppendRecreatesCorruptOrMissingFile) {
-  const std::string path = file("corrupt.h5");
-  { std::ofstream(path) << "not an HDF5 file, cut short by a crash"; }
-  bool recreated = false;
-  Hdf5RunFile::open_for_append(path, sample_metadata(2), 1.0, &recreated).close();
-  EXPECT_TRUE(recreated);
-  EXPECT_TRUE(fs::exists(path + ".corrupt"));
+// Each snapshot is its own file; the run file only links them. A restart rebuilds the links
+// from the snapshot files, so a run file destroyed by a crash loses nothing.
+TEST_F(Hdf5Test, SnapshotsAreFilesOfTheirOwnLinkedFromTheRunFile) {
+  const std::string path = file("run.h5");
+  const auto ps = random_particles<2>(40, 2, 5);
+  const auto p = random_pressure(40, 6);
+  {
+    auto run = Hdf5RunFile::create(path, sample_metadata(2));
+    for (int k = 0; k < 4; ++k) run.write_snapshot<2>(10 * k, 0.1 * k, ps, p);
+  }
+  const fs::path snaps = dir_ / "snapshots";
+  ASSERT_TRUE(fs::exists(snaps / "run_0000000030.h5"));
+  // A snapshot file reads on its own like a run file of one snapshot.
+  const auto own = list_snapshots((snaps / "run_0000000020.h5").string());
+  ASSERT_EQ(own.size(), 1u);
+  EXPECT_EQ(own[0].step, 20);
+  EXPECT_EQ(read_metadata((snaps / "run_0000000020.h5").string()).case_name, "dam break");
+  // The run file holds external links, not copies.
+  {
+    const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    H5L_info_t info;
+    ASSERT_GE(H5Lget_info(f, "/particles/0000000010", &info, H5P_DEFAULT), 0);
+    EXPECT_EQ(info.type, H5L_TYPE_EXTERNAL);
+    H5Fclose(f);
+  }
+  // The run file destroyed (as by a kill in the middle of an in-place write), a leftover
+  // temporary snapshot and a later snapshot: the restart at t = 0.2 keeps 0, 10, 20 exactly.
+  { std::ofstream(path, std::ios::trunc) << "cut short"; }
+  { std::ofstream(snaps / "run_0000000040.h5.tmp") << "half a snapshot"; }
+  {
+    auto run = Hdf5RunFile::open_for_append(path, sample_metadata(2), 0.2);
+    EXPECT_EQ(run.snapshot_count(), 3u);
+  }
+  const auto list = list_snapshots(path);
+  ASSERT_EQ(list.size(), 3u);
+  EXPECT_EQ(list[2].step, 20);
+  const auto s = read_snapshot<2>(path, list[2]);
+  EXPECT_EQ(s.time, 0.2);
+  expect_snapshot_matches(s, ps, p);
+  EXPECT_FALSE(fs::exists(snaps / "run_0000000030.h5"));
+  EXPECT_FALSE(fs::exists(snaps / "run_0000000040.h5.tmp"));
+  EXPECT_FALSE(fs::exists(dir_ / "run.h5.tmp"));
+  // A new run file of the same name starts without the old snapshots.
+  Hdf5RunFile::create(path, sample_metadata(2));
   EXPECT_TRUE(list_snapshots(path).empty());
-  EXPECT_EQ(read_metadata(path).case_name, "dam break");
-
-  const std::string missing = file("missing.h5");
-  recreated = false;
-  Hdf5RunFile::open_for_append(missing, sample_metadata(2), 1.0, &recreated).close();
-  EXPECT_TRUE(recreated);
-  EXPECT_FALSE(fs::exists(missing + ".corrupt"));
+  EXPECT_FALSE(fs::exists(snaps / "run_0000000000.h5"));
 }
 
 TEST_F(Hdf5Test, OpenForAppendRejectsOtherDimension) {
   const std::string path = file("dim.h5");
-  Hdf5RunFile::create(path, sample_metadata(2)).close();
+  const auto ps = random_particles<2>(20, 0, 1);
+  Hdf5RunFile::create(path, sample_metadata(2))
+      .write_snapshot<2>(1, 0.0, ps, random_pressure(20, 2));
   EXPECT_THROW(Hdf5RunFile::open_for_append(path, sample_metadata(3), 0.0), std::runtime_error);
-  EXPECT_FALSE(fs::exists(path + ".corrupt"));
+  EXPECT_EQ(list_snapshots(path).size(), 1u);
 }
 
 SimulationClock sample_clock(double t) {
