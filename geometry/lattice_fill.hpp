@@ -70,16 +70,11 @@ struct FillOptions {
   bool march = true;
 };
 
-// Coordinates a body may reach, in metres from the origin (documented in the README): far
-// beyond any coastal model, and small enough that lattice indices and CGAL's arithmetic stay
-// well inside their ranges.
-inline constexpr double kMaxCoordinate = 1.0e6;
-
 // An upper estimate of the particles fill_bodies() would make, per body (case order), from the
 // bounds alone (no shape test, instant for any dp): lattice points in the bounding box of a
 // fluid region, and of a wall region (the shape's bounds plus the wall thickness) less the
 // points inside the shape where its volume is known. Throws std::invalid_argument naming the
-// body if its bounds are not finite or reach beyond kMaxCoordinate.
+// body if its bounds are not finite or reach beyond kMaxCoordinate (geometry/shape.hpp).
 struct FillEstimate {
   std::vector<double> particles;  // per body
   double total = 0.0;

@@ -594,22 +594,37 @@ std::vector<std::string> CaseReader::read_open_faces(const YAML::Node& node,
 
 // ---------------------------------------------------------------------------------------------
 
-// Counts document starts and nothing else (no node is built).
+// Notes where each document and its first node start, and builds nothing.
 class DocumentCounter : public YAML::EventHandler {
  public:
-  YAML::Mark start;
-  void OnDocumentStart(const YAML::Mark& mark) override { start = mark; }
+  YAML::Mark start, node;
+  bool has_node = false;
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    start = node = mark;
+    has_node = false;
+  }
   void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                       YAML::EmitterStyle::value) override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t) override { first(m); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { first(m); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    first(m);
+  }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    first(m);
+  }
   void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                  YAML::EmitterStyle::value) override {}
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    first(m);
+  }
   void OnMapEnd() override {}
+
+ private:
+  void first(const YAML::Mark& m) {
+    if (!has_node) node = m, has_node = true;
+  }
 };
 
 // The line of a second YAML document after the first, or 0 if there is none. yaml-cpp 0.7's
@@ -624,7 +639,8 @@ int second_document_line(const std::string& text) {
   if (!parser.HandleNextDocument(counter)) return 0;
   const int first = counter.start.pos;
   if (!parser.HandleNextDocument(counter)) return 0;
-  return counter.start.pos > first ? counter.start.line + 1 : 0;
+  if (counter.start.pos <= first) return 0;
+  return (counter.has_node ? counter.node : counter.start).line + 1;
 }
 
 bool blank_yaml(const std::string& text) {
