@@ -39,6 +39,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 
 #include "geometry/lattice_fill.hpp"
@@ -62,6 +63,7 @@ using halfedge_descriptor = Mesh::Halfedge_index;
 // Bounds of `repair: true`'s self-intersection removal (README, Shapes).
 constexpr std::size_t kMaxRepairFaces = 200000;
 constexpr std::size_t kMaxRepairPairs = 5000;
+constexpr double kMinRepairEdge = 1e-7;  // shortest edge / mesh size (float STL: ~6e-8)
 
 constexpr const char* kFormats = ".stl (ASCII or binary), .obj, .off, .ply";
 
@@ -246,6 +248,29 @@ void make_free_of_self_intersections(Mesh& mesh, const std::string& path, bool r
                     " of faces intersect; set `repair: true` to try CGAL's self-intersection "
                     "removal");
   }
+  // Edges far below float precision of the mesh's size (slivers, denormal coordinates) make
+  // the autorefinement dereference freed triangulation faces (SIGSEGV, found by fuzzing):
+  // refused before it runs.
+  {
+    CGAL::Bbox_3 box;
+    for (auto v : mesh.vertices()) box += mesh.point(v).bbox();
+    const double size =
+        std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                  CGAL::square(box.zmax() - box.zmin()));
+    double shortest = std::numeric_limits<double>::infinity();
+    for (auto e : mesh.edges())
+      shortest = std::min(
+          shortest, std::sqrt(CGAL::squared_distance(mesh.point(mesh.source(mesh.halfedge(e))),
+                                                     mesh.point(mesh.target(mesh.halfedge(e))))));
+    if (!(shortest >= kMinRepairEdge * size)) {
+      std::ostringstream m;
+      m << path << ": " << pairs << " of faces intersect, and the mesh has an edge of " << shortest
+        << " m, under " << kMinRepairEdge << " of its size (" << size
+        << " m): `repair: true` cannot remove self-intersections among such slivers; fix the "
+           "mesh in a mesh editor";
+      throw MeshError(m.str());
+    }
+  }
   // CGAL's removal is experimental and its cost grows fast with the faces involved; beyond
   // these bounds it is refused rather than left to run for hours.
   if (mesh.number_of_faces() > kMaxRepairFaces || rep.self_intersections > kMaxRepairPairs) {
@@ -372,6 +397,18 @@ std::shared_ptr<MeshSolid> MeshSolid::load(const std::string& path, const Placem
     points[i] = to_point(x);
   }
 
+  // A mesh smaller than a micrometre is no geometry (and CGAL's arithmetic underflows on it).
+  {
+    Aabb b;
+    for (const Point& q : points) b.extend(Eigen::Vector3d(q.x(), q.y(), q.z()));
+    const double size = (b.max - b.min).norm();
+    if (!(size >= 1e-6)) {
+      std::ostringstream m;
+      m << path << ": the mesh spans only " << size
+        << " m after placement (at least 1e-6 m expected; check `scale`)";
+      throw MeshError(m.str());
+    }
+  }
   // Makes neighbouring faces agree on orientation; duplicates vertices where the soup is not
   // manifold (such a mesh then shows up as not closed).
   PMP::orient_polygon_soup(points, polygons);

@@ -90,6 +90,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"mesh_inf.yaml", 2, {"mesh_inf.stl", "vertex 1", "non-finite"}},
         BadCase{"mesh_1e30.yaml", 2, {"mesh_1e30.stl", "vertex 1", "1e+30", "+-1e+06 m"}},
         BadCase{"mesh_7e22.yaml", 2, {"mesh_7e22.stl", "6.8e+22", "+-1e+06 m"}},
+        // found by fuzz_mesh_stl: SIGSEGV in CGAL's autorefinement
+        BadCase{"mesh_denormal.yaml", 2, {"mesh_denormal.stl", "spans only", "1e-06 m"}},
+        BadCase{"mesh_sliver.yaml",
+                2,
+                {"mesh_sliver.stl", "pairs of faces intersect", "under 1e-07 of its size"}},
         // 10: geometry near 1e30 m (UBSan: float to long overflow in the fill)
         BadCase{"far_geometry.yaml", 2, {"body 'water' reaches x = 1e+30 m", "+-1e+06 m"}},
         // 5: a start outside the density bounds is a setup error
