@@ -31,6 +31,9 @@ struct RunSummary {
   double wall_seconds = 0.0;
   double particle_steps_per_second = 0.0;
   ExclusionCounts excluded;
+  FaceExclusions faces;                // out of the domain, by face and time
+  double excluded_fluid_fraction = 0;  // of the initial fluid mass
+  bool excluded_warning = false;       // it passed watchdog.warn_excluded
   PhaseTimes phases;
   double output_seconds = 0.0;
   int snapshots = 0;

@@ -29,6 +29,7 @@ FillSummary fill_dim(const CaseSpec& spec, const FillCommandOptions& opt, std::o
   log << "fill " << spec.name << " (" << spec.file << "): " << D << "D, dp = " << spec.dp << " m, "
       << omp_get_max_threads() << " thread(s)\n";
   print_fill_report(log, setup.fill, setup.meshes, D, spec.dp, setup.fill_seconds);
+  for (const auto& w : setup.warnings) log << "  " << w << "\n";
 
   // Initial state as the run starts it: hydrostatic densities and their EoS pressure.
   const SolverParams& p = setup.params;

@@ -112,6 +112,18 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
         << " particles\n";
   log << "  total: " << n_total << " particles (" << sum.fluid << " fluid, " << sum.boundary
       << " boundary)\n";
+  {
+    const auto& pr = setup.params;
+    std::ostringstream d;
+    for (int k = 0; k < D; ++k)
+      d << (k ? " x " : "") << "[" << pr.domain_min[k] << ", " << pr.domain_max[k] << "]";
+    log << "  domain: " << d.str() << " m"
+        << (setup.default_domain ? " (default: the particles' box + 10 % + 2h, +50 % of its "
+                                   "height above; set domain: to change)"
+                                 : " (from the case file)")
+        << "\n";
+  }
+  for (const auto& w : setup.warnings) log << "  " << w << "\n";
 
   // Gauge context, before the particles move into the simulation.
   GaugeContext gctx;
@@ -165,6 +177,26 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   } else {
     sim.emplace(make_simulation<D>(setup, std::move(setup.particles)));
   }
+  if (opt.restart) {
+    // Exclusions by face (kept in the checkpoint's schedule; absent in older checkpoints).
+    FaceExclusions f;
+    for (int k = 0; k < FaceExclusions::kFaces; ++k) {
+      const std::string key = std::string("excluded.") + FaceExclusions::name(k) + ".";
+      const auto u = static_cast<std::size_t>(k);
+      auto get = [&](const char* what, double fallback) {
+        const auto it = schedule.find(key + what);
+        return it == schedule.end() ? fallback : it->second;
+      };
+      f.particles[u] = static_cast<std::size_t>(get("particles", 0.0));
+      f.fluid[u] = static_cast<std::size_t>(get("fluid", 0.0));
+      f.fluid_mass[u] = get("fluid_mass", 0.0);
+      f.first_time[u] = get("first_time", -1.0);
+      f.last_time[u] = get("last_time", -1.0);
+    }
+    sim->restore_faces(f);
+  }
+  Watchdog<D> watchdog(spec.watchdog, *sim, setup.floor);
+  double last_checkpoint = opt.restart ? resume_after : -1.0;
 
   const double t_end = spec.t_end;
   const double every = spec.output_every > 0.0 ? spec.output_every : t_end;
@@ -243,9 +275,23 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
          tot.max_speed, surge_front(sim->particles(), up, setup.floor, band, spec.dp)},
         std::vector<bool>(7, true));
   };
+  auto watch = [&]() {
+    if (watchdog.check(*sim)) log << "  " << watchdog.warning() << "\n" << std::flush;
+  };
   auto write_checkpoint_now = [&]() {
+    watch();  // a checkpoint is written only while the run is healthy
     const double t0 = omp_get_wtime();
     std::map<std::string, double> s;
+    const FaceExclusions& fx = sim->excluded_faces();
+    for (int k = 0; k < FaceExclusions::kFaces; ++k) {
+      const std::string key = std::string("excluded.") + FaceExclusions::name(k) + ".";
+      const auto u = static_cast<std::size_t>(k);
+      s[key + "particles"] = static_cast<double>(fx.particles[u]);
+      s[key + "fluid"] = static_cast<double>(fx.fluid[u]);
+      s[key + "fluid_mass"] = fx.fluid_mass[u];
+      s[key + "first_time"] = fx.first_time[u];
+      s[key + "last_time"] = fx.last_time[u];
+    }
     s["next_output"] = out_timer.next;
     s["next_diagnostics"] = diag_timer.next;
     s["next_checkpoint"] = ck_timer.next;
@@ -255,6 +301,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     diag.flush();
     gauges.flush();
     write_checkpoint<D>(ck_path, sim->particles(), sim->clock(), s, tag);
+    last_checkpoint = sim->time();
     sum.output_seconds += omp_get_wtime() - t0;
   };
   // Everything due at the current time, in a fixed order.
@@ -281,35 +328,52 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   auto last_progress = loop0;
   const long step0 = sim->steps();
   const double time0 = sim->time();
-  while (sim->time() < t_end) {
-    if (const int sig = stop_requested()) {
-      // SIGINT/SIGTERM: everything consistent on disk at this step, then leave.
-      if (opt.progress && tty) std::fprintf(stderr, "\n");
-      write_checkpoint_now();
-      std::ostringstream m;
-      m << "stopped by "
-        << (sig == SIGINT    ? "SIGINT"
-            : sig == SIGTERM ? "SIGTERM"
-                             : "a signal")
-        << " at t = " << sim->time() << " s, step " << sim->steps() << "; checkpoint " << ck_path
-        << " written\ncontinue with: swell run " << spec.file << " --restart " << out_dir;
-      throw Interrupted(sig, m.str());
+  try {
+    while (sim->time() < t_end) {
+      if (const int sig = stop_requested()) {
+        // SIGINT/SIGTERM: everything consistent on disk at this step, then leave.
+        if (opt.progress && tty) std::fprintf(stderr, "\n");
+        write_checkpoint_now();
+        std::ostringstream m;
+        m << "stopped by "
+          << (sig == SIGINT    ? "SIGINT"
+              : sig == SIGTERM ? "SIGTERM"
+                               : "a signal")
+          << " at t = " << sim->time() << " s, step " << sim->steps() << "; checkpoint " << ck_path
+          << " written\ncontinue with: swell run " << spec.file << " --restart " << out_dir;
+        throw Interrupted(sig, m.str());
+      }
+      sim->step();
+      if (gauges.averages()) gauges.accumulate(sim->dt(), sim->particles(), sim->pressure());
+      if (watchdog.due(sim->steps())) watch();
+      outputs(sim->time() >= t_end);
+      const auto now = std::chrono::steady_clock::now();
+      if (opt.progress && (now - last_progress > std::chrono::seconds(2) || sim->time() >= t_end)) {
+        last_progress = now;
+        const double el = std::chrono::duration<double>(now - loop0).count();
+        const double rate =
+            static_cast<double>(sim->steps() - step0) * n_total / std::max(el, 1e-9);
+        const double eta = el / (sim->time() - time0) * (t_end - sim->time());
+        std::fprintf(
+            stderr,
+            "%st = %.4f / %.4f s | step %ld | dt %.3e s | %.2f M particle-steps/s | ETA %s%s",
+            tty ? "\r" : "", sim->time(), t_end, sim->steps(), sim->dt(), rate / 1e6,
+            format_duration(eta).c_str(), tty ? "   " : "\n");
+        std::fflush(stderr);
+      }
     }
-    sim->step();
-    if (gauges.averages()) gauges.accumulate(sim->dt(), sim->particles(), sim->pressure());
-    outputs(sim->time() >= t_end);
-    const auto now = std::chrono::steady_clock::now();
-    if (opt.progress && (now - last_progress > std::chrono::seconds(2) || sim->time() >= t_end)) {
-      last_progress = now;
-      const double el = std::chrono::duration<double>(now - loop0).count();
-      const double rate = static_cast<double>(sim->steps() - step0) * n_total / std::max(el, 1e-9);
-      const double eta = el / (sim->time() - time0) * (t_end - sim->time());
-      std::fprintf(
-          stderr, "%st = %.4f / %.4f s | step %ld | dt %.3e s | %.2f M particle-steps/s | ETA %s%s",
-          tty ? "\r" : "", sim->time(), t_end, sim->steps(), sim->dt(), rate / 1e6,
-          format_duration(eta).c_str(), tty ? "   " : "\n");
-      std::fflush(stderr);
-    }
+  } catch (const InstabilityError& e) {
+    if (opt.progress && tty) std::fprintf(stderr, "\n");
+    diag.flush();
+    gauges.flush();
+    std::ostringstream m;
+    m << e.what() << ". ";
+    if (last_checkpoint >= 0.0)
+      m << "The last checkpoint, " << ck_path << " (t = " << last_checkpoint
+        << " s), was taken while the run was healthy";
+    else
+      m << "No checkpoint was written (the run failed before the first one)";
+    throw InstabilityError(m.str());
   }
   if (opt.progress && tty) std::fprintf(stderr, "\n");
   diag.flush();
@@ -324,6 +388,9 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   sum.particle_steps_per_second =
       static_cast<double>(n_total) * loop_steps / std::max(loop_s, 1e-9);
   sum.excluded = sim->excluded();
+  sum.faces = sim->excluded_faces();
+  sum.excluded_fluid_fraction = watchdog.excluded_fraction();
+  sum.excluded_warning = watchdog.warned();
   sum.phases = sim->phase_times();
 
   std::ostringstream s;
@@ -343,8 +410,23 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     << sum.output_seconds << " s\n"
     << "  excluded:       " << sum.excluded.total() << " (out of domain "
     << sum.excluded.out_of_domain << ", non-finite " << sum.excluded.non_finite
-    << ", density out of range " << sum.excluded.density_out_of_range << ")\n"
-    << "  output:         " << out_dir << " (" << sum.snapshots << " snapshots, " << pvd.path()
+    << ", density out of range " << sum.excluded.density_out_of_range << "); fluid mass "
+    << std::round(watchdog.excluded_fraction() * 1e5) / 1e3 << " % of the initial";
+  if (watchdog.warned())
+    s << " (warning: over watchdog.warn_excluded = "
+      << watchdog.limits().warn_excluded_fraction * 100 << " %)";
+  s << "\n";
+  {
+    const FaceExclusions& fx = sim->excluded_faces();
+    for (int k = 0; k < FaceExclusions::kFaces; ++k) {
+      const auto u = static_cast<std::size_t>(k);
+      if (fx.particles[u] == 0) continue;
+      s << "    through " << FaceExclusions::name(k) << ": " << fx.particles[u] << " ("
+        << fx.fluid[u] << " fluid, " << fx.fluid_mass[u] << " kg), t = " << fx.first_time[u]
+        << " - " << fx.last_time[u] << " s\n";
+    }
+  }
+  s << "  output:         " << out_dir << " (" << sum.snapshots << " snapshots, " << pvd.path()
     << ")\n";
   log << s.str();
   write_file_atomically((out / "run_summary.txt").string(), s.str());

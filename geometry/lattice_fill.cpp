@@ -27,6 +27,11 @@ IndexRange index_range(const Aabb& b, double pad, int dim, double dp) {
   for (int d = 0; d < dim; ++d) {
     if (!std::isfinite(b.min[d]) || !std::isfinite(b.max[d]))
       throw std::invalid_argument("fill: a shape has no finite bounds");
+    // Lattice indices are longs: keep (x / dp) far inside their range before converting.
+    const double reach = std::max(std::abs(b.min[d] - pad), std::abs(b.max[d] + pad)) / dp;
+    if (!(reach < 1e15))
+      throw std::invalid_argument("fill: a shape reaches " + std::to_string(reach) +
+                                  " dp from the origin (more than 1e15 lattice planes)");
     r.lo[d] = static_cast<long>(std::floor((b.min[d] - pad) / dp - 0.5)) - 1;
     r.hi[d] = static_cast<long>(std::ceil((b.max[d] + pad) / dp - 0.5)) + 1;
   }
@@ -138,9 +143,76 @@ struct Obstacle {  // a boundary body as seen by fluid points
 
 }  // namespace
 
+// Lattice points (i + 1/2) dp inside [lo, hi] on the first dim axes, as a double.
+double lattice_points(const Aabb& b, int dim, double dp) {
+  double n = 1.0;
+  for (int d = 0; d < dim; ++d) {
+    if (!(b.max[d] >= b.min[d])) return 0.0;
+    n *= std::floor((b.max[d] - b.min[d]) / dp) + 1.0;
+  }
+  return n;
+}
+
 double BodyFillReport::volume_error(int dim, double dp) const {
   if (!(region_volume > 0.0)) return std::numeric_limits<double>::quiet_NaN();
   return static_cast<double>(in_region) * std::pow(dp, dim) / region_volume - 1.0;
+}
+
+FillEstimate estimate_fill(const std::vector<BodyGeometry>& bodies, const FillOptions& opt) {
+  if (!(opt.dp > 0.0)) throw std::invalid_argument("fill: dp must be positive");
+  const int dim = opt.dim, up = dim - 1;
+  const double dp = opt.dp;
+  FillEstimate est;
+  static const char* const axes[] = {"x", "y", "z"};
+  auto checked_bounds = [&](const BodyGeometry& b, const Shape& shape) {
+    const Aabb box = shape.bounds();
+    for (int d = 0; d < dim; ++d) {
+      const double lo = box.min[d], hi = box.max[d];
+      if (!std::isfinite(lo) || !std::isfinite(hi))
+        throw std::invalid_argument("body '" + b.name + "': its bounds on " + axes[d] +
+                                    " are not finite");
+      if (std::max(std::abs(lo), std::abs(hi)) > kMaxCoordinate) {
+        std::ostringstream m;
+        m << "body '" << b.name << "' reaches " << axes[d] << " = "
+          << (std::abs(lo) > std::abs(hi) ? lo : hi) << " m; geometry must lie within +-"
+          << kMaxCoordinate << " m of the origin (check the units and the placement scale)";
+        throw std::invalid_argument(m.str());
+      }
+    }
+    return box;
+  };
+  for (const BodyGeometry& b : bodies) {
+    double n = 0.0;
+    if (b.fluid && b.fill_below) {
+      if (b.container >= 0 && b.container < static_cast<int>(bodies.size()) &&
+          bodies[static_cast<std::size_t>(b.container)].shape) {
+        const auto& tank = bodies[static_cast<std::size_t>(b.container)];
+        Aabb box = checked_bounds(tank, *tank.shape);
+        box.max[up] = std::min(box.max[up], *b.fill_below);
+        n = lattice_points(box, dim, dp);
+      }
+    } else if (b.shape) {
+      const Aabb box = checked_bounds(b, *b.shape);
+      const double inside = std::isfinite(b.shape->volume()) && b.shape->volume() > 0.0
+                                ? b.shape->volume() / std::pow(dp, dim)
+                                : std::numeric_limits<double>::quiet_NaN();
+      if (b.fluid) {
+        n = lattice_points(box, dim, dp);
+      } else if (b.walls_inside) {
+        Aabb outer = box;
+        const double t = std::max(b.layers, 1) * dp;
+        for (int d = 0; d < dim; ++d) outer.min[d] -= t, outer.max[d] += t;
+        n = lattice_points(outer, dim, dp);
+        if (std::isfinite(inside)) n = std::max(0.0, n - 0.999 * inside);
+      } else {
+        n = lattice_points(box, dim, dp);
+        if (std::isfinite(inside)) n = std::min(n, 1.001 * inside + 1.0);
+      }
+    }
+    est.particles.push_back(n);
+    est.total += n;
+  }
+  return est;
 }
 
 std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,

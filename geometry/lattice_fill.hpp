@@ -70,6 +70,17 @@ struct FillOptions {
   bool march = true;
 };
 
+// An upper estimate of the particles fill_bodies() would make, per body (case order), from the
+// bounds alone (no shape test, instant for any dp): lattice points in the bounding box of a
+// fluid region, and of a wall region (the shape's bounds plus the wall thickness) less the
+// points inside the shape where its volume is known. Throws std::invalid_argument naming the
+// body if its bounds are not finite or reach beyond kMaxCoordinate (geometry/shape.hpp).
+struct FillEstimate {
+  std::vector<double> particles;  // per body
+  double total = 0.0;
+};
+FillEstimate estimate_fill(const std::vector<BodyGeometry>& bodies, const FillOptions& opt);
+
 // Fills every body, in parallel over lattice rows (OpenMP); the points come out in lattice
 // order (z, then y, then x) whatever the thread count. A fluid point is kept when it lies in
 // the body's region and, for every boundary body: with walls inside, at depth >= gap inside

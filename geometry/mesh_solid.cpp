@@ -39,7 +39,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
+
+#include "geometry/lattice_fill.hpp"
 
 namespace swell::geometry {
 
@@ -56,6 +59,11 @@ using Tree = CGAL::AABB_tree<Traits>;
 using Inside = CGAL::Side_of_triangle_mesh<Mesh, K>;
 using face_descriptor = Mesh::Face_index;
 using halfedge_descriptor = Mesh::Halfedge_index;
+
+// Bounds of `repair: true`'s self-intersection removal (README, Shapes).
+constexpr std::size_t kMaxRepairFaces = 200000;
+constexpr std::size_t kMaxRepairPairs = 5000;
+constexpr double kMinRepairEdge = 1e-7;  // shortest edge / mesh size (float STL: ~6e-8)
 
 constexpr const char* kFormats = ".stl (ASCII or binary), .obj, .off, .ply";
 
@@ -240,6 +248,39 @@ void make_free_of_self_intersections(Mesh& mesh, const std::string& path, bool r
                     " of faces intersect; set `repair: true` to try CGAL's self-intersection "
                     "removal");
   }
+  // Edges far below float precision of the mesh's size (slivers, denormal coordinates) make
+  // the autorefinement dereference freed triangulation faces (SIGSEGV, found by fuzzing):
+  // refused before it runs.
+  {
+    CGAL::Bbox_3 box;
+    for (auto v : mesh.vertices()) box += mesh.point(v).bbox();
+    const double size =
+        std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                  CGAL::square(box.zmax() - box.zmin()));
+    double shortest = std::numeric_limits<double>::infinity();
+    for (auto e : mesh.edges())
+      shortest = std::min(
+          shortest, std::sqrt(CGAL::squared_distance(mesh.point(mesh.source(mesh.halfedge(e))),
+                                                     mesh.point(mesh.target(mesh.halfedge(e))))));
+    if (!(shortest >= kMinRepairEdge * size)) {
+      std::ostringstream m;
+      m << path << ": " << pairs << " of faces intersect, and the mesh has an edge of " << shortest
+        << " m, under " << kMinRepairEdge << " of its size (" << size
+        << " m): `repair: true` cannot remove self-intersections among such slivers; fix the "
+           "mesh in a mesh editor";
+      throw MeshError(m.str());
+    }
+  }
+  // CGAL's removal is experimental and its cost grows fast with the faces involved; beyond
+  // these bounds it is refused rather than left to run for hours.
+  if (mesh.number_of_faces() > kMaxRepairFaces || rep.self_intersections > kMaxRepairPairs) {
+    throw MeshError(path + ": " + pairs + " of faces intersect in a mesh of " +
+                    plural(mesh.number_of_faces(), "face", "faces") +
+                    "; `repair: true` removes self-intersections only in meshes of at most " +
+                    std::to_string(kMaxRepairFaces) + " faces with at most " +
+                    std::to_string(kMaxRepairPairs) +
+                    " intersecting pairs; fix the mesh in a mesh editor");
+  }
   // First CGAL's local removal (smoothing or re-filling small patches: meshing defects); if
   // that fails, autorefinement, which cuts the faces along their intersections and drops the
   // parts inside the solid (overlapping closed parts become their union).
@@ -314,6 +355,22 @@ std::shared_ptr<MeshSolid> MeshSolid::load(const std::string& path, const Placem
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
   read_soup(path, points, polygons);
+  // CGAL's exact predicates and repairs assume sane numbers: non-finite or huge coordinates
+  // make them crash (SIGFPE in GMP) or run without end, so they are refused here.
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point& q = points[i];
+    if (!std::isfinite(q.x()) || !std::isfinite(q.y()) || !std::isfinite(q.z())) {
+      std::ostringstream m;
+      m << path << ": vertex " << i << " has a non-finite coordinate (" << q.x() << ", " << q.y()
+        << ", " << q.z() << "); the file is corrupt";
+      throw MeshError(m.str());
+    }
+  }
+  for (const auto& poly : polygons)
+    for (const std::size_t v : poly)
+      if (v >= points.size())
+        throw MeshError(path + ": a face refers to vertex " + std::to_string(v) + " of " +
+                        std::to_string(points.size()));
 
   // Merges duplicate points and polygons, drops degenerate polygons and isolated points; it
   // never changes the shape, so it always runs.
@@ -328,8 +385,30 @@ std::shared_ptr<MeshSolid> MeshSolid::load(const std::string& path, const Placem
   if (polygons.empty()) throw MeshError(path + ": the mesh has no valid faces");
 
   const Eigen::Affine3d t = placement_transform(placement);
-  for (Point& p : points) p = to_point(t * Eigen::Vector3d(p.x(), p.y(), p.z()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d x = t * Eigen::Vector3d(points[i].x(), points[i].y(), points[i].z());
+    if (!(x.cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
+      std::ostringstream m;
+      m << path << ": vertex " << i << " lies at (" << x.x() << ", " << x.y() << ", " << x.z()
+        << ") m after placement, beyond the +-" << kMaxCoordinate
+        << " m that geometry may reach (check the units and `scale`)";
+      throw MeshError(m.str());
+    }
+    points[i] = to_point(x);
+  }
 
+  // A mesh smaller than a micrometre is no geometry (and CGAL's arithmetic underflows on it).
+  {
+    Aabb b;
+    for (const Point& q : points) b.extend(Eigen::Vector3d(q.x(), q.y(), q.z()));
+    const double size = (b.max - b.min).norm();
+    if (!(size >= 1e-6)) {
+      std::ostringstream m;
+      m << path << ": the mesh spans only " << size
+        << " m after placement (at least 1e-6 m expected; check `scale`)";
+      throw MeshError(m.str());
+    }
+  }
   // Makes neighbouring faces agree on orientation; duplicates vertices where the soup is not
   // manifold (such a mesh then shows up as not closed).
   PMP::orient_polygon_soup(points, polygons);

@@ -7,6 +7,7 @@
 // reader, io/case_gauges.cpp, through io/case_parse_util.hpp.
 #include "io/case_file.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -200,6 +201,8 @@ class CaseReader : private NodeReader {
   void read_time(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_domain(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_output(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_watchdog(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_limits(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   std::vector<BodySpec> read_bodies(const YAML::Node& node, const std::string& path) const;
   BodySpec read_body(const YAML::Node& node, const std::string& path) const;
   void read_wall_options(const YAML::Node& node, const std::string& path, BodySpec& body) const;
@@ -222,8 +225,8 @@ class CaseReader : private NodeReader {
 };
 
 CaseSpec CaseReader::read(const YAML::Node& root) {
-  const Names top_keys = {"name",   "dim",    "dp",     "physics", "time",
-                          "domain", "bodies", "gauges", "output"};
+  const Names top_keys = {"name",   "dim",    "dp",     "physics",  "time",  "domain",
+                          "bodies", "gauges", "output", "watchdog", "limits"};
   expect(root.IsMap(), root, "case file", "a map with keys " + join(top_keys));
   check_keys(root, "", top_keys);
 
@@ -248,6 +251,8 @@ CaseSpec CaseReader::read(const YAML::Node& root) {
     spec.gauges = read_gauges(*this, *node, "gauges", spec.bodies);
   }
   if (auto node = find(root, "output")) read_output(*node, "output", spec);
+  if (auto node = find(root, "watchdog")) read_watchdog(*node, "watchdog", spec);
+  if (auto node = find(root, "limits")) read_limits(*node, "limits", spec);
   return spec;
 }
 
@@ -260,12 +265,20 @@ void CaseReader::read_physics(const YAML::Node& node, const std::string& path,
   if (auto v = find(node, "rho0")) {
     spec.rho0 = number_if(*v, child(path, "rho0"), positive, "a number > 0");
   }
-  if (auto v = find(node, "gravity")) spec.gravity = vector(*v, child(path, "gravity"));
+  if (auto v = find(node, "gravity")) {
+    spec.gravity = vector(*v, child(path, "gravity"));
+    // c0 = coefsound sqrt(|g| hswl): without gravity the speed of sound, hence dt, is zero.
+    expect(spec.gravity.norm() > 0.0, *v, child(path, "gravity"),
+           "a non-zero vector (c0 = coefsound sqrt(|g| hswl) needs gravity)");
+  }
   if (auto v = find(node, "coefsound")) {
     spec.coefsound = number_if(*v, child(path, "coefsound"), positive, "a number > 0");
   }
   if (auto v = find(node, "coefh")) {
-    spec.coefh = number_if(*v, child(path, "coefh"), positive, "a number > 0");
+    // h = coefh sqrt(D) dp; outside [0.5, 4] a particle has ~2 or ~800 neighbours (3D).
+    spec.coefh = number_if(
+        *v, child(path, "coefh"), [](double c) { return c >= 0.5 && c <= 4.0; },
+        "a number in [0.5, 4] (DualSPHysics cases use 0.75-1.5)");
   }
   if (auto v = find(node, "hswl")) {
     spec.hswl = number_if(*v, child(path, "hswl"), positive, "a number > 0");
@@ -400,6 +413,57 @@ void CaseReader::read_output(const YAML::Node& node, const std::string& path,
   if (auto v = find(node, "gauge_every")) {
     spec.gauge_every = number_if(
         *v, child(path, "gauge_every"), [](double e) { return e > 0.0; }, "a number > 0");
+  }
+}
+
+// Thresholds of the blow-up watchdog (solver/diagnostics.hpp, WatchdogLimits).
+void CaseReader::read_watchdog(const YAML::Node& node, const std::string& path,
+                               CaseSpec& spec) const {
+  expect_map(node, path,
+             {"every", "warn_excluded", "max_excluded", "max_density", "penetration_depth",
+              "max_penetrated", "dt_collapse"});
+  WatchdogLimits& w = spec.watchdog;
+  const auto fraction = [](double f) { return f > 0.0 && f <= 1.0; };
+  if (auto v = find(node, "every")) {
+    w.every = integer(*v, child(path, "every"));
+    expect(w.every >= 1 && w.every <= 1000, *v, child(path, "every"),
+           "an integer in [1, 1000] (steps)");
+  }
+  if (auto v = find(node, "warn_excluded")) {
+    w.warn_excluded_fraction =
+        number_if(*v, child(path, "warn_excluded"), fraction, "a fraction in (0, 1]");
+  }
+  if (auto v = find(node, "max_excluded")) {
+    w.max_excluded_fraction =
+        number_if(*v, child(path, "max_excluded"), fraction, "a fraction in (0, 1]");
+  }
+  if (auto v = find(node, "max_density")) {
+    w.max_density_factor = number_if(
+        *v, child(path, "max_density"), [](double f) { return f > 1.0; }, "a factor of rho0 > 1");
+  }
+  if (auto v = find(node, "penetration_depth")) {
+    w.penetration_depth = number_if(
+        *v, child(path, "penetration_depth"), [](double d) { return d > 0.0; },
+        "a number of dp > 0");
+  }
+  if (auto v = find(node, "max_penetrated")) {
+    w.max_penetrated_fraction = number_if(
+        *v, child(path, "max_penetrated"), [](double f) { return f >= 0.0 && f <= 1.0; },
+        "a fraction in [0, 1]");
+  }
+  if (auto v = find(node, "dt_collapse")) {
+    spec.dt_collapse = number_if(
+        *v, child(path, "dt_collapse"), [](double f) { return f > 0.0 && f < 1.0; },
+        "a fraction of the first dt in (0, 1)");
+  }
+}
+
+void CaseReader::read_limits(const YAML::Node& node, const std::string& path,
+                             CaseSpec& spec) const {
+  expect_map(node, path, {"max_particles"});
+  if (auto v = find(node, "max_particles")) {
+    spec.max_particles = number_if(
+        *v, child(path, "max_particles"), [](double n) { return n >= 1.0; }, "a number >= 1");
   }
 }
 
@@ -558,22 +622,83 @@ std::vector<std::string> CaseReader::read_open_faces(const YAML::Node& node,
 
 // ---------------------------------------------------------------------------------------------
 
+// Notes where each document and its first node start, and builds nothing.
+class DocumentCounter : public YAML::EventHandler {
+ public:
+  YAML::Mark start, node;
+  bool has_node = false;
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    start = node = mark;
+    has_node = false;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t) override { first(m); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { first(m); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    first(m);
+  }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    first(m);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    first(m);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void first(const YAML::Mark& m) {
+    if (!has_node) node = m, has_node = true;
+  }
+};
+
+// The line of a second YAML document after the first, or 0 if there is none. yaml-cpp 0.7's
+// LoadAll loops without end, allocating, on some malformed input (a lone ',' yields empty
+// documents that consume nothing; upstream jbeder/yaml-cpp#1040), so the parser is asked for
+// two documents at most, and a "document" that does not start past the first one is no
+// second document.
+int second_document_line(const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentCounter counter;
+  if (!parser.HandleNextDocument(counter)) return 0;
+  const int first = counter.start.pos;
+  if (!parser.HandleNextDocument(counter)) return 0;
+  if (counter.start.pos <= first) return 0;
+  return (counter.has_node ? counter.node : counter.start).line + 1;
+}
+
+bool blank_yaml(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos && line[first] != '#') return false;
+  }
+  return true;
+}
+
 // Parses the YAML text; a case file holds exactly one document.
 YAML::Node parse_yaml(const std::string& text, const std::string& file) {
-  std::vector<YAML::Node> documents;
+  YAML::Node root;
+  int second = 0;
   try {
-    documents = YAML::LoadAll(text);
+    root = YAML::Load(text);
+    second = second_document_line(text);
   } catch (const YAML::ParserException& e) {
     throw CaseError(file, e.mark.is_null() ? 0 : e.mark.line + 1, "YAML syntax error: " + e.msg);
   }
-  if (documents.empty()) {
+  if (root.IsNull() && blank_yaml(text)) {
     throw CaseError(file, 1, "the case file is empty; expected at least dim, dp, time and bodies");
   }
-  if (documents.size() > 1) {
-    throw CaseError(file, line_of(documents[1]),
+  if (second > 0) {
+    throw CaseError(file, second,
                     "a second YAML document ('---') was found; a case file holds exactly one");
   }
-  return documents.front();
+  return root;
 }
 
 std::string default_case_name(const std::string& file_label) {

@@ -1,9 +1,14 @@
 // From a parsed case to particles, parameters and the simulation (io/case_setup.hpp).
 #include "io/case_setup.hpp"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +21,90 @@
 #include "io/case_geometry.hpp"
 
 namespace swell {
+
+// Per particle: the state and integrator fields (~130 B in 3D), force buffers (~70 B), the
+// cell sort (~10 B), and during the set-up the fill's points twice (48 B), rounded up; the
+// measured time-loop figure is ~260 B (README, Performance). Per grid cell: its start, cursor
+// and fluid flag.
+double estimated_bytes(double particles, double grid_cells) {
+  return 400.0 * particles + 16.0 * grid_cells;
+}
+
+double available_memory_bytes() {
+  double avail = -1.0;
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kb = 0.0;
+  std::string unit;
+  while (meminfo >> key >> kb >> unit) {
+    if (key == "MemAvailable:") {
+      avail = kb * 1024.0;
+      break;
+    }
+  }
+  if (avail < 0.0) {
+    const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    avail = pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
+  }
+  // A container's own limit (cgroup v2, then v1), less what it already uses.
+  for (const auto& [limit_file, usage_file] :
+       {std::pair<const char*, const char*>{"/sys/fs/cgroup/memory.max",
+                                            "/sys/fs/cgroup/memory.current"},
+        {"/sys/fs/cgroup/memory/memory.limit_in_bytes",
+         "/sys/fs/cgroup/memory/memory.usage_in_bytes"}}) {
+    std::ifstream lf(limit_file), uf(usage_file);
+    double limit = 0.0, used = 0.0;
+    if (lf >> limit && uf >> used && limit > used && limit < 1e18)
+      avail = std::min(avail, limit - used);
+  }
+  return avail;
+}
+
+namespace {
+
+std::string bytes_text(double b) {
+  std::ostringstream o;
+  o << std::setprecision(3);
+  if (b >= 1e12)
+    o << b / 1e12 << " TB";
+  else if (b >= 1e9)
+    o << b / 1e9 << " GB";
+  else
+    o << b / 1e6 << " MB";
+  return o.str();
+}
+
+// Refuses a case whose particles (upper estimate from the bounds) exceed limits.max_particles
+// or whose memory exceeds 80 % of what the machine has available, before anything is filled.
+void check_size(const CaseSpec& spec, const geometry::FillEstimate& est, int dim) {
+  const double avail = available_memory_bytes();
+  const double need = estimated_bytes(est.total, 0.0);
+  const bool too_many = est.total > spec.max_particles;
+  const bool too_big = avail > 0.0 && need > 0.8 * avail;
+  if (!too_many && !too_big) return;
+  std::ostringstream m;
+  m << std::setprecision(3) << "the case would make up to " << est.total << " particles (";
+  for (std::size_t b = 0; b < est.particles.size() && b < spec.bodies.size(); ++b)
+    m << (b ? ", " : "") << "'" << spec.bodies[b].name << "' " << est.particles[b];
+  m << ") at dp = " << spec.dp << " m, needing about " << bytes_text(need) << " of memory; ";
+  if (too_big) m << "this machine has " << bytes_text(avail) << " available";
+  if (too_big && too_many) m << ", and ";
+  if (too_many) m << "limits.max_particles is " << spec.max_particles;
+  m << ". Raise dp (the count scales as dp^-" << dim << "), shrink the bodies (or their wall "
+    << "layers)" << (too_many && !too_big ? ", or raise limits.max_particles" : "");
+  throw CaseError(spec.file, 0, m.str());
+}
+
+std::string point_text(const Eigen::Vector3d& x, int dim) {
+  std::ostringstream o;
+  o << "(";
+  for (int d = 0; d < dim; ++d) o << (d ? ", " : "") << x[d];
+  o << ")";
+  return o.str();
+}
+
+}  // namespace
+
 template <int D>
 CaseSetup<D> setup_case(const CaseSpec& spec) {
   CaseSetup<D> s;
@@ -24,6 +113,11 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   fo.dim = D;
   fo.dp = spec.dp;
   const std::vector<geometry::BodyGeometry> geo = case_geometry(spec, &s.meshes);
+  try {
+    check_size(spec, geometry::estimate_fill(geo, fo), D);
+  } catch (const std::invalid_argument& e) {
+    throw CaseError(spec.file, 0, e.what());
+  }
   std::vector<geometry::FilledBody> filled;
   try {
     filled = geometry::fill_bodies(geo, fo);
@@ -52,6 +146,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   p.boundary = spec.boundary;
   p.mdbc_slip = spec.mdbc_slip;
   p.mdbc_det_min = spec.mdbc_det_min;
+  p.dt_collapse_factor = spec.dt_collapse;
 
   // Motion laws (checked here: a bad CSV series or spec is a case error at the body's line).
   s.motions.resize(spec.bodies.size());
@@ -145,15 +240,184 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     lo = lo.cwiseMin(Vec<D>(slo.template head<D>()));
     hi = hi.cwiseMax(Vec<D>(shi.template head<D>()));
   }
+  // Default: the box plus 10 % of its size and 2h on every side, and above the water (against
+  // gravity) a further 50 % of its height, so that splashes thrown out of an open tank fall
+  // back into it instead of leaving the run through the top (DualSPHysics users raise the
+  // top by 50 % for the same reason).
   const Vec<D> margin = (0.1 * (hi - lo)).array() + 2.0 * p.h;
+  Vec<D> dlo = lo - margin, dhi = hi + margin;
+  int up_axis = 0;
+  for (int d = 0; d < D; ++d)
+    if (std::abs(g[d]) > std::abs(g[up_axis])) up_axis = d;
+  if (g[up_axis] <= 0.0)
+    dhi[up_axis] += 0.5 * (hi - lo)[up_axis];
+  else
+    dlo[up_axis] -= 0.5 * (hi - lo)[up_axis];
+  s.default_domain = !spec.domain_min;
   p.domain_min.setZero();
   p.domain_max.setZero();
   p.domain_min.template head<D>() =
-      spec.domain_min ? Vec<D>(spec.domain_min->template head<D>()) : Vec<D>(lo - margin);
+      spec.domain_min ? Vec<D>(spec.domain_min->template head<D>()) : dlo;
   p.domain_max.template head<D>() =
-      spec.domain_max ? Vec<D>(spec.domain_max->template head<D>()) : Vec<D>(hi + margin);
+      spec.domain_max ? Vec<D>(spec.domain_max->template head<D>()) : dhi;
+
+  // An explicit domain must hold every particle (and every moving body's path): what lies
+  // outside would be excluded at the first step.
+  const Vec<D> dmin = p.domain_min.template head<D>(), dmax = p.domain_max.template head<D>();
+  if (!s.default_domain) {
+    std::vector<std::size_t> outside(spec.bodies.size(), 0);
+    std::vector<std::size_t> first(spec.bodies.size(), 0);
+    for (std::size_t i = 0; i < s.particles.size(); ++i) {
+      const Vec<D>& x = s.particles.pos[i];
+      if ((x.array() >= dmin.array()).all() && (x.array() <= dmax.array()).all()) continue;
+      const std::size_t b = s.particles.body[i];
+      if (outside[b]++ == 0) first[b] = i;
+    }
+    for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+      if (outside[b] == 0) continue;
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      x.template head<D>() = s.particles.pos[first[b]];
+      const bool fluid = spec.bodies[b].kind == BodySpec::Kind::Fluid;
+      std::ostringstream m;
+      m << "domain: " << outside[b] << " of the " << s.bodies[b].particles << " particles of "
+        << (fluid ? "fluid" : "boundary") << " body '" << spec.bodies[b].name << "' (line "
+        << spec.bodies[b].line << ") lie outside the domain " << point_text(p.domain_min, D)
+        << " - " << point_text(p.domain_max, D) << ", e.g. at " << point_text(x, D)
+        << (fluid ? "" : ": the domain cuts its walls") << "; enlarge domain (or leave it out "
+        << "for the default)";
+      throw CaseError(spec.file, spec.bodies[b].line, m.str());
+    }
+    Eigen::Vector3d plo = Eigen::Vector3d::Zero(), phi = Eigen::Vector3d::Zero();
+    plo.template head<D>() = lo;
+    phi.template head<D>() = hi;
+    if ((lo.array() < dmin.array()).any() || (hi.array() > dmax.array()).any()) {
+      throw CaseError(spec.file, 0,
+                      "domain: the path of a moving body up to time.end spans " +
+                          point_text(plo, D) + " - " + point_text(phi, D) + ", beyond the domain " +
+                          point_text(p.domain_min, D) + " - " + point_text(p.domain_max, D) +
+                          "; enlarge domain");
+    }
+  }
+  // The neighbour grid: cells of the kernel support over the domain, padded by one per side.
+  {
+    const double support = kernel_support_factor(p.kernel) * p.h;
+    double cells = 1.0;
+    for (int d = 0; d < D; ++d) cells *= std::floor((dmax[d] - dmin[d]) / support) + 3.0;
+    const double avail = available_memory_bytes();
+    const double need = estimated_bytes(static_cast<double>(s.particles.size()), cells);
+    if (cells > 4.0e9 || (avail > 0.0 && need > 0.8 * avail)) {
+      std::ostringstream m;
+      m << std::setprecision(3) << "domain: " << point_text(p.domain_min, D) << " - "
+        << point_text(p.domain_max, D) << " makes " << cells << " neighbour cells of " << support
+        << " m (2h), needing about " << bytes_text(need) << " with the particles"
+        << (avail > 0.0 ? "; this machine has " + bytes_text(avail) + " available" : "")
+        << "; shrink the domain (at most 4e9 cells)";
+      throw CaseError(spec.file, 0, m.str());
+    }
+  }
+
+  // Setup checks that need the particles: fill levels, fluid outside every tank, gauges.
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    const BodySpec& body = spec.bodies[b];
+    if (!body.fill_below || body.fill_container < 0) continue;
+    const auto& tank = geo[static_cast<std::size_t>(body.fill_container)];
+    const double top = tank.shape->bounds().max[D - 1];
+    if (*body.fill_below > top) {
+      std::ostringstream m;
+      m << "warning: body '" << body.name << "' (line " << body.line << "): fill level "
+        << *body.fill_below << " m lies above the top of '" << tank.name << "' (" << top
+        << " m); the tank is filled to its top";
+      s.warnings.push_back(m.str());
+    }
+  }
+  {
+    std::vector<const geometry::BodyGeometry*> tanks;
+    for (const auto& gb : geo)
+      if (!gb.fluid && gb.walls_inside && gb.shape) tanks.push_back(&gb);
+    if (!tanks.empty()) {
+      std::vector<std::size_t> loose(spec.bodies.size(), 0);
+      for (std::size_t i = 0; i < s.particles.size(); ++i) {
+        if (s.particles.role[i] != Role::Fluid) continue;
+        Eigen::Vector3d x = Eigen::Vector3d::Zero();
+        x.template head<D>() = s.particles.pos[i];
+        bool in_one = false;
+        for (const auto* t : tanks) {
+          const geometry::Aabb box = t->shape->bounds();
+          bool in = true;
+          for (int d = 0; d < D; ++d) in = in && x[d] >= box.min[d] && x[d] <= box.max[d];
+          in_one = in_one || in;
+        }
+        if (!in_one) ++loose[s.particles.body[i]];
+      }
+      for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+        if (loose[b] == 0) continue;
+        s.warnings.push_back("warning: " + std::to_string(loose[b]) + " of the " +
+                             std::to_string(s.bodies[b].particles) + " particles of fluid body '" +
+                             spec.bodies[b].name + "' (line " +
+                             std::to_string(spec.bodies[b].line) +
+                             ") lie outside every tank (boundary body with walls: inside)");
+      }
+    }
+  }
+  for (std::size_t k = 0; k < spec.gauges.size(); ++k) {
+    const GaugeSpec& gs = spec.gauges[k];
+    if (gs.kind == GaugeSpec::Kind::Force || gs.kind == GaugeSpec::Kind::Front) continue;
+    Eigen::Vector3d at = gs.at;
+    if (gs.normal && gs.kind == GaugeSpec::Kind::Pressure)
+      at += gs.offset.value_or(p.h) * gs.normal->normalized();
+    bool inside = true;
+    for (int d = 0; d < D; ++d) inside = inside && at[d] >= dmin[d] && at[d] <= dmax[d];
+    const std::string who = "gauges[" + std::to_string(k) + "] '" + gs.name + "'";
+    if (!inside) {
+      throw CaseError(spec.file, gs.line,
+                      who + ": samples at " + point_text(at, D) + ", outside the domain " +
+                          point_text(p.domain_min, D) + " - " + point_text(p.domain_max, D) +
+                          ", where there is never fluid");
+    }
+    if (gs.kind == GaugeSpec::Kind::Height) continue;  // its line starts on a floor
+    for (const auto& gb : geo) {
+      // Structures only: beside a tank, "outside its shape" may be above an open face.
+      if (gb.fluid || !gb.shape || gb.walls_inside) continue;
+      if (!(gb.shape->signed_distance(at) < -0.5 * spec.dp)) continue;
+      s.warnings.push_back("warning: " + who + " (line " + std::to_string(gs.line) +
+                           ") samples at " + point_text(at, D) + ", inside the solid '" + gb.name +
+                           "'; it will read nan");
+      break;
+    }
+  }
 
   initialise_hydrostatic(s.particles, p);
+
+  // The hydrostatic start must lie inside the density bounds: a fluid particle outside them
+  // would be deleted at the first step (with coefsound: 1, a fifth of the water at once).
+  {
+    const double lo_rho = p.rho_min_factor * p.rho0, hi_rho = p.rho_max_factor * p.rho0;
+    std::size_t worst = s.particles.size(), count = 0;
+    double worst_ratio = 1.0;
+    for (std::size_t i = 0; i < s.particles.size(); ++i) {
+      if (s.particles.role[i] != Role::Fluid) continue;
+      const double rho = s.particles.rho[i];
+      if (rho >= lo_rho && rho <= hi_rho) continue;
+      ++count;
+      const double r = std::max(rho / p.rho0, p.rho0 / rho);
+      if (!(r <= worst_ratio)) worst_ratio = r, worst = i;
+    }
+    if (count > 0) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      x.template head<D>() = s.particles.pos[worst];
+      std::ostringstream m;
+      m << std::setprecision(4) << "the initial hydrostatic density of " << count
+        << " fluid particles lies outside physics.density_bounds [" << p.rho_min_factor << ", "
+        << p.rho_max_factor << "] rho0 (up to " << s.particles.rho[worst] / p.rho0
+        << " rho0, particle " << s.particles.id[worst] << " of body '"
+        << spec.bodies[s.particles.body[worst]].name << "' at " << point_text(x, D)
+        << " m): with coefsound = " << spec.coefsound << ", c0 = " << p.c0
+        << " m/s is too low for a water depth of " << s.hswl
+        << " m. Raise physics.coefsound (DualSPHysics cases use 10-40) or widen "
+           "physics.density_bounds";
+      throw CaseError(spec.file, 0, m.str());
+    }
+  }
   return s;
 }
 

@@ -37,11 +37,23 @@ struct CaseSetup {
   std::vector<geometry::BodyFillReport> fill;
   std::vector<geometry::MeshReport> meshes;
   double fill_seconds = 0.0;
+  // Setup problems that do not stop the run (a fill level above its tank, a gauge inside a
+  // solid, fluid outside every tank), one line each, for the run header and `swell fill`.
+  std::vector<std::string> warnings;
+  bool default_domain = true;  // the domain was computed (README "Domain"), not given
 };
+
+// The memory a run of about `particles` particles needs (setup and time loop together), and
+// the memory this machine has available (MemAvailable, or the cgroup's limit if lower).
+double estimated_bytes(double particles, double grid_cells);
+double available_memory_bytes();
 
 // Builds the particles (geometry/), hydrostatic densities (bc/) and solver parameters. Mesh
 // files are read relative to the case file's folder. Throws CaseError (file and line) for a
-// shape that cannot be built or a body that cannot be filled.
+// shape that cannot be built or a body that cannot be filled, and for a setup that cannot run:
+// more particles or memory than the machine (or limits.max_particles) allows, estimated before
+// the fill; fluid or walls outside an explicit domain; gauges outside the domain; an initial
+// hydrostatic density outside physics.density_bounds.
 template <int D>
 CaseSetup<D> setup_case(const CaseSpec& spec);
 

@@ -9,6 +9,7 @@
 
 #include "bc/motion.hpp"
 #include "geometry/shape_spec.hpp"
+#include "solver/diagnostics.hpp"
 #include "solver/physics/kernels.hpp"
 #include "solver/solver_params.hpp"
 
@@ -127,6 +128,13 @@ struct CaseSpec {
   bool hdf5 = true;               // snapshots + metadata in OUTDIR/<name>.h5
   double checkpoint_every = 0.0;  // 0: at every output time
   double gauge_every = 0.0;       // default gauge interval; 0: output.every / 10
+
+  // watchdog: when a run counts as blown up (solver/diagnostics.hpp), and dt collapse
+  WatchdogLimits watchdog;
+  double dt_collapse = 1e-3;  // a dt below this fraction of the first one stops the run
+
+  // limits: what a case may ask of the machine before the fill starts (io/case_setup.cpp)
+  double max_particles = 5.0e7;
 };
 
 }  // namespace swell

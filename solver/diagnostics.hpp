@@ -1,12 +1,16 @@
 // Whole-run quantities watched during a run: fluid mass, kinetic energy, momentum and the
-// surge front. Cheap O(N) reductions, called between steps.
+// surge front; and the blow-up watchdog. Cheap O(N) reductions, called between steps.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <sstream>
+#include <string>
 
 #include "solver/state/particle_set.hpp"
+#include "solver/time/simulation.hpp"
 
 namespace swell {
 
@@ -47,5 +51,219 @@ double surge_front(const ParticleSet<D>& ps, const Vec<D>& up, double floor, dou
   }
   return front;
 }
+
+// When a run counts as blown up (case file `watchdog:`, README "Watchdog"). Fractions are of
+// the initial fluid mass; densities are factors of rho0; the penetration depth is in dp.
+struct WatchdogLimits {
+  int every = 10;                          // steps between checks (also before each checkpoint)
+  double warn_excluded_fraction = 0.001;   // warn once when this much fluid mass is gone
+  double max_excluded_fraction = 0.05;     // stop when this much is gone
+  double max_density_factor = 2.0;         // stop on any density above f rho0 or below rho0 / f
+  double penetration_depth = 2.0;          // fluid this many dp below the lowest wall particle...
+  double max_penetrated_fraction = 0.001;  // ...in more than this fraction of the fluid: stop
+};
+
+// Watches a running Simulation for a blow-up: fluid mass lost (by face and reason), fluid gone
+// through the floor (deeper than penetration_depth dp below the lowest fixed wall particle,
+// within the walls' horizontal extent), densities far from rho0 (walls checked here, fluid
+// through the simulation's worst density exclusion). check() throws InstabilityError naming
+// the particle, place, time and likely cause. One O(N) pass, no allocation unless it reports.
+template <int D>
+class Watchdog {
+ public:
+  // `floor`: the lowest initial fluid level along "up" (CaseSetup::floor): water starting below
+  // every wall is not a leak. The initial fluid mass counts excluded particles too (restart).
+  Watchdog(const WatchdogLimits& limits, const Simulation<D>& sim, double floor) : lim_(limits) {
+    const ParticleSet<D>& ps = sim.particles();
+    const Vec<D> g = sim.params().gravity.template head<D>();
+    for (int d = 0; d < D; ++d)
+      if (std::abs(g[d]) > std::abs(g[up_])) up_ = d;
+    sign_ = g[up_] > 0.0 ? -1.0 : 1.0;
+    dp_ = sim.params().dp;
+    rho0_ = sim.params().rho0;
+    lo_.setConstant(std::numeric_limits<double>::infinity());
+    hi_.setConstant(-std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < ps.total(); ++i) {
+      if (is_fluid(ps.role[i])) {
+        mass0_ += ps.mass[i];
+        ++fluid0_;
+      } else if (ps.role[i] == Role::FixedWall && i < ps.size()) {
+        lo_ = lo_.cwiseMin(ps.pos[i]);
+        hi_ = hi_.cwiseMax(ps.pos[i]);
+      }
+    }
+    bottom_ = std::min(sign_ > 0.0 ? lo_[up_] : -hi_[up_], floor) - limits.penetration_depth * dp_;
+    walls_ = std::isfinite(lo_[up_]);
+  }
+
+  bool due(long step) const { return step % lim_.every == 0; }
+  // Fluid mass excluded so far, as a fraction of the initial fluid mass (after check()).
+  double excluded_fraction() const { return excluded_; }
+  bool warned() const { return warned_; }
+  const WatchdogLimits& limits() const { return lim_; }
+
+  // Returns true once, when the excluded fluid mass first passes warn_excluded_fraction; the
+  // warning text is then in warning(). Throws InstabilityError when a limit is passed.
+  bool check(const Simulation<D>& sim) {
+    const ParticleSet<D>& ps = sim.particles();
+    double mass = 0.0, wall_rho = 0.0, deepest = 0.0;
+    std::size_t wall_i = ps.size(), deep_i = ps.size(), penetrated = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (!is_fluid(ps.role[i])) {
+        if (ps.rho[i] > wall_rho) wall_rho = ps.rho[i], wall_i = i;
+        continue;
+      }
+      mass += ps.mass[i];
+      if (!walls_) continue;
+      const double depth = bottom_ - sign_ * ps.pos[i][up_];
+      if (depth <= 0.0) continue;
+      bool under = true;
+      for (int d = 0; d < D; ++d)
+        if (d != up_) under = under && ps.pos[i][d] >= lo_[d] && ps.pos[i][d] <= hi_[d];
+      if (!under) continue;
+      ++penetrated;
+      if (depth > deepest) deepest = depth, deep_i = i;
+    }
+    excluded_ = mass0_ > 0.0 ? std::max(0.0, 1.0 - mass / mass0_) : 0.0;
+    const double t = sim.time();
+    const long step = sim.steps();
+
+    if (excluded_ > lim_.max_excluded_fraction) throw_excluded(sim, t, step);
+    if (wall_i < ps.size() && wall_rho > lim_.max_density_factor * rho0_) {
+      std::ostringstream m;
+      m << "wall particle " << ps.id[wall_i] << " (body " << ps.body[wall_i] << ") at "
+        << where(ps.pos[wall_i]) << " has density " << wall_rho / rho0_ << " rho0 at t = " << t
+        << " s (step " << step << "), over watchdog.max_density = " << lim_.max_density_factor
+        << " rho0 (pressure " << pressure_factor(wall_rho / rho0_)
+        << ". Likely cause: an impact too violent for the wall (raise physics.coefsound, lower "
+        << "time.cfl, or refine dp)";
+      throw InstabilityError(m.str());
+    }
+    const auto& worst = sim.worst_density_exclusion();
+    if (worst.ratio > lim_.max_density_factor) {
+      std::ostringstream m;
+      m << "fluid particle " << worst.id << " at " << where(worst.pos) << " reached density "
+        << worst.rho / rho0_ << " rho0 at t = " << worst.time << " s, beyond watchdog.max_density "
+        << "= " << lim_.max_density_factor << " (factor of rho0 either way) in one step"
+        << ". Likely cause: the pressure field blew up (the speed of sound c0 = " << sim.params().c0
+        << " m/s is too low for the flow, or time.cfl too high)";
+      throw InstabilityError(m.str());
+    }
+    if (penetrated > lim_.max_penetrated_fraction * static_cast<double>(fluid0_)) {
+      std::ostringstream m;
+      m << penetrated << " fluid particles are more than " << lim_.penetration_depth
+        << " dp below the lowest wall particle (the floor), within the walls' horizontal extent, "
+        << "at t = " << t << " s (step " << step
+        << "), over watchdog.max_penetrated = " << lim_.max_penetrated_fraction
+        << " of the fluid; the deepest, particle " << ps.id[deep_i] << " at "
+        << where(ps.pos[deep_i]) << ", is " << deepest + lim_.penetration_depth * dp_
+        << " m below it. Likely cause: water went through the DBC floor (the flow is too fast "
+        << "for the wall: more layers, a smaller time.cfl or dp, or a higher physics.coefsound)";
+      throw InstabilityError(m.str());
+    }
+    if (!warned_ && excluded_ > lim_.warn_excluded_fraction) {
+      warned_ = true;
+      std::ostringstream m;
+      m << "warning: " << percent(excluded_)
+        << " % of the fluid mass has been excluded by t = " << t << " s (step " << step
+        << "), over watchdog.warn_excluded = " << percent(lim_.warn_excluded_fraction)
+        << " %: " << by_face(sim);
+      warning_ = m.str();
+      return true;
+    }
+    return false;
+  }
+  const std::string& warning() const { return warning_; }
+
+  // "N through x+ (t = a-b s), ..., M density out of range, K non-finite" for messages.
+  static std::string by_face(const Simulation<D>& sim) {
+    const FaceExclusions& f = sim.excluded_faces();
+    std::ostringstream m;
+    const char* sep = "";
+    for (int k = 0; k < FaceExclusions::kFaces; ++k) {
+      const auto u = static_cast<std::size_t>(k);
+      if (f.particles[u] == 0) continue;
+      m << sep << f.fluid[u] << " fluid (" << f.particles[u] << " in all) out through "
+        << FaceExclusions::name(k) << " (t = " << f.first_time[u] << "-" << f.last_time[u] << " s)";
+      sep = ", ";
+    }
+    const ExclusionCounts& e = sim.excluded();
+    m << sep << e.density_out_of_range << " density out of range, " << e.non_finite
+      << " non-finite";
+    return m.str();
+  }
+
+ private:
+  static double percent(double f) { return std::round(f * 1e5) / 1e3; }
+  static std::string where(const Vec<D>& x) {
+    std::ostringstream m;
+    m << "(";
+    for (int d = 0; d < D; ++d) m << (d ? ", " : "") << x[d];
+    m << ") m";
+    return m.str();
+  }
+  std::string pressure_factor(double r) const {
+    std::ostringstream m;
+    m << "(rho/rho0)^7 = " << std::pow(r, 7.0) << ")";
+    return m.str();
+  }
+
+  [[noreturn]] void throw_excluded(const Simulation<D>& sim, double t, long step) const {
+    const FaceExclusions& f = sim.excluded_faces();
+    const ExclusionCounts& e = sim.excluded();
+    int face = -1;
+    for (int k = 0; k < FaceExclusions::kFaces; ++k)
+      if (f.fluid_mass[static_cast<std::size_t>(k)] > 0.0 &&
+          (face < 0 || f.fluid_mass[static_cast<std::size_t>(k)] >
+                           f.fluid_mass[static_cast<std::size_t>(face)]))
+        face = k;
+    const double face_mass = face >= 0 ? f.fluid_mass[static_cast<std::size_t>(face)] : 0.0;
+    std::ostringstream m;
+    m << percent(excluded_) << " % of the fluid mass has been excluded by t = " << t << " s (step "
+      << step << "), over watchdog.max_excluded = " << percent(lim_.max_excluded_fraction)
+      << " %: " << by_face(sim) << ".";
+    if (face >= 0) {
+      const auto u = static_cast<std::size_t>(face);
+      m << " Last through " << FaceExclusions::name(face) << ": particle " << f.last_id[u]
+        << " at (" << f.last_pos[u][0] << ", " << f.last_pos[u][1];
+      if (D == 3) m << ", " << f.last_pos[u][2];
+      m << ") m at t = " << f.last_time[u] << " s.";
+    }
+    m << " Likely cause: ";
+    const double per = mass0_ / std::max<std::size_t>(fluid0_, 1);
+    const double density_mass = static_cast<double>(e.density_out_of_range) * per;
+    if (e.non_finite > 0 && static_cast<double>(e.non_finite) * per >= face_mass &&
+        static_cast<double>(e.non_finite) >= static_cast<double>(e.density_out_of_range)) {
+      m << "the state turned non-finite (a numerical blow-up: lower time.cfl, raise "
+           "physics.coefsound)";
+    } else if (density_mass >= face_mass) {
+      m << "the pressure field blew up: the fluid density left physics.density_bounds (the speed "
+           "of sound c0 = "
+        << sim.params().c0
+        << " m/s too low for the flow, time.cfl too high, or an initial overlap)";
+    } else if (face == 2 * up_ + (sign_ > 0.0 ? 0 : 1)) {
+      m << "water is leaving through the bottom of the domain, i.e. through the floor (a DBC leak: "
+           "more wall layers, a smaller time.cfl or dp, a higher physics.coefsound)";
+    } else if (face == 2 * up_ + (sign_ > 0.0 ? 1 : 0)) {
+      m << "splashes leave through the top of the domain; raise domain.max (or leave the domain "
+           "to its default)";
+    } else {
+      m << "water is leaving through a side of the domain (over an open side, or through a wall "
+           "that leaks); enlarge the domain or check the walls";
+    }
+    throw InstabilityError(m.str());
+  }
+
+  WatchdogLimits lim_;
+  int up_ = D - 1;
+  double sign_ = 1.0, dp_ = 0.0, rho0_ = 1000.0, bottom_ = 0.0;
+  double mass0_ = 0.0;
+  std::size_t fluid0_ = 0;
+  Vec<D> lo_, hi_;
+  bool walls_ = false;
+  double excluded_ = 0.0;
+  bool warned_ = false;
+  std::string warning_;
+};
 
 }  // namespace swell

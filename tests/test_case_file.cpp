@@ -491,7 +491,9 @@ TEST(CaseFileErrors, InvalidPhysicsValues) {
                               {"physics.density_diffusion.model", "fourtakas, molteni, none"}));
   EXPECT_TRUE(ThrowsCaseError(head + "  viscosity: {alpha: -0.1}\n", 4,
                               {"physics.viscosity.alpha", ">= 0"}));
-  EXPECT_TRUE(ThrowsCaseError(head + "  coefh: 0\n", 4, {"physics.coefh", "> 0"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  coefh: 0\n", 4, {"physics.coefh", "[0.5, 4]"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  coefh: 1000\n", 4, {"physics.coefh", "[0.5, 4]"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  gravity: [0, 0]\n", 4, {"physics.gravity", "non-zero"}));
   EXPECT_TRUE(
       ThrowsCaseError(head + "  density_bounds: [1.1, 1.3]\n", 4, {"physics.density_bounds"}));
 }

@@ -180,10 +180,13 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
   std::vector<std::string> written;
   for (const auto& [kind, members] : by_kind) {
     std::map<long long, Column> rows;
+    // A structured binding cannot be captured by C++17 lambdas (clang 14 refuses it): a copy
+    // of the count is.
+    const std::size_t n_members = members.size();
     auto put = [&](std::size_t member, double t, std::vector<double> v) {
       Column& c = rows[time_key(t)];
       c.time = t;
-      c.values.resize(members.size());
+      c.values.resize(n_members);
       c.values[member] = std::move(v);
     };
     for (std::size_t m = 0; m < members.size(); ++m) {

@@ -89,10 +89,40 @@ std::size_t Simulation<D>::fluid_count() const {
 template <int D>
 void Simulation<D>::sort_particles() {
   const double t0 = omp_get_wtime();
+  const std::size_t before = ps_.size();
   const auto r = grid_.sort(ps_);
   excluded_.out_of_domain += r.out_of_domain;
   excluded_.non_finite += r.non_finite;
+  if (r.out_of_domain > 0) record_faces(ps_.size(), before);
   times_.neighbour += omp_get_wtime() - t0;
+}
+
+// The sort moves excluded particles past size() in their previous order; those with finite
+// values left the domain. Serial: only the few particles excluded by this sort are visited.
+template <int D>
+void Simulation<D>::record_faces(std::size_t first, std::size_t last) {
+  for (std::size_t i = first; i < last; ++i) {
+    const Vec<D>& x = ps_.pos[i];
+    if (!x.allFinite() || !ps_.vel[i].allFinite() || !std::isfinite(ps_.rho[i])) continue;
+    int face = -1;
+    double beyond = 0.0;
+    for (int d = 0; d < D; ++d) {
+      const double below = prm_.domain_min[d] - x[d], above = x[d] - prm_.domain_max[d];
+      if (below >= beyond) beyond = below, face = 2 * d;
+      if (above >= beyond) beyond = above, face = 2 * d + 1;
+    }
+    if (face < 0) continue;  // on the boundary itself: the grid's own rounding
+    const auto f = static_cast<std::size_t>(face);
+    ++faces_.particles[f];
+    if (faces_.first_time[f] < 0.0) faces_.first_time[f] = time_;
+    faces_.last_time[f] = time_;
+    if (!is_fluid(ps_.role[i])) continue;
+    ++faces_.fluid[f];
+    faces_.fluid_mass[f] += ps_.mass[i];
+    faces_.last_id[f] = ps_.id[i];
+    for (int d = 0; d < 3; ++d)
+      faces_.last_pos[f][static_cast<std::size_t>(d)] = d < D ? x[d] : 0.0;
+  }
 }
 
 template <int D>
@@ -148,6 +178,11 @@ void Simulation<D>::step() {
   for (std::size_t i = 0; i < ps_.size(); ++i) {
     if (!is_fluid(ps_.role[i])) continue;
     if (std::isfinite(ps_.rho[i]) && (ps_.rho[i] < lo || ps_.rho[i] > hi)) {
+      const double ratio = ps_.rho[i] > 0.0
+                               ? std::max(ps_.rho[i] / prm_.rho0, prm_.rho0 / ps_.rho[i])
+                               : std::numeric_limits<double>::infinity();
+      if (ratio > worst_rho_.ratio)
+        worst_rho_ = {ratio, ps_.rho[i], time_ + dt_, ps_.id[i], ps_.pos[i]};
       ps_.pos[i].setConstant(std::numeric_limits<double>::quiet_NaN());
       ++out;
     } else {
@@ -163,9 +198,25 @@ void Simulation<D>::step() {
   ++steps_;
   if (first_dt_ == 0.0) first_dt_ = dt_;
   if (!(dt_ > prm_.dt_collapse_factor * first_dt_)) {
+    // Name the fluid particle with the largest acceleration (only when stopping).
+    std::size_t worst = ps_.size();
+    double a2 = -1.0;
+    for (std::size_t i = 0; i < ps_.size(); ++i)
+      if (is_fluid(ps_.role[i]) && f_.ace[i].squaredNorm() > a2)
+        a2 = f_.ace[i].squaredNorm(), worst = i;
     std::ostringstream msg;
     msg << "time step collapsed to " << dt_ << " s at t = " << time_ << " s (step " << steps_
-        << ", first dt " << first_dt_ << " s): the run is unstable";
+        << ", first dt " << first_dt_
+        << " s, limit watchdog.dt_collapse = " << prm_.dt_collapse_factor << " of it)";
+    if (worst < ps_.size()) {
+      msg << "; largest acceleration " << std::sqrt(a2) << " m/s^2 on fluid particle "
+          << ps_.id[worst] << " at (";
+      for (int d = 0; d < D; ++d) msg << (d ? ", " : "") << ps_.pos[worst][d];
+      msg << ") m";
+    }
+    msg << ". Likely cause: particles pressed together (a violent impact or an initial overlap) "
+           "drive the forces up; lower time.cfl, raise physics.coefsound, or check the geometry "
+           "for fluid placed inside walls";
     throw InstabilityError(msg.str());
   }
   if (fluid_left == 0) throw InstabilityError("every fluid particle has been excluded");

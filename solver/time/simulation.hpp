@@ -43,6 +43,17 @@ class Simulation {
   const ParticleSet<D>& particles() const { return ps_; }
   const CellGrid<D>& grid() const { return grid_; }
   const ExclusionCounts& excluded() const { return excluded_; }
+  // Particles that left the domain, per face, with times (restored by restore_faces()).
+  const FaceExclusions& excluded_faces() const { return faces_; }
+  void restore_faces(const FaceExclusions& f) { faces_ = f; }
+  // The fluid particle excluded for its density farthest from rho0 (the largest of
+  // rho/rho0 and rho0/rho), for the watchdog; ratio 0 while none was.
+  struct DensityExclusion {
+    double ratio = 0.0, rho = 0.0, time = 0.0;
+    std::uint32_t id = 0;
+    Vec<D> pos = Vec<D>::Zero();
+  };
+  const DensityExclusion& worst_density_exclusion() const { return worst_rho_; }
   const PhaseTimes& phase_times() const { return times_; }
   std::size_t fluid_count() const;
 
@@ -71,6 +82,8 @@ class Simulation {
   void step_symplectic();
   void step_verlet();
   void sort_particles();
+  // Files the particles the last sort moved out of the domain, [first, last), by face.
+  void record_faces(std::size_t first, std::size_t last);
   // prescribe + finish_density at time t, after an integration substep.
   void after_substep(double t);
   template <class Stage>
@@ -87,6 +100,8 @@ class Simulation {
   long steps_ = 0;
   int verlet_counter_ = 0;
   ExclusionCounts excluded_;
+  FaceExclusions faces_;
+  DensityExclusion worst_rho_;
   PhaseTimes times_;
 };
 
