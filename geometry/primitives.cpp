@@ -14,12 +14,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string fmt(const Eigen::Vector3d& v, int dim) {
-  std::ostringstream s;
-  s.precision(6);
-  s << "(" << v.x() << ", " << v.y();
-  if (dim == 3) s << ", " << v.z();
-  s << ")";
-  return s.str();
+  return format_point(v, dim);
 }
 
 void check_dim(int dim, const char* what) {
@@ -82,6 +77,15 @@ double shoelace(const std::vector<Eigen::Vector2d>& loop) {
 }
 
 }  // namespace
+
+std::string format_point(const Eigen::Vector3d& v, int dim) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "(" << v.x() << ", " << v.y();
+  if (dim == 3) s << ", " << v.z();
+  s << ")";
+  return s.str();
+}
 
 bool overlaps(const Aabb& a, const Aabb& b) {
   return (a.min.array() <= b.max.array()).all() && (b.min.array() <= a.max.array()).all();

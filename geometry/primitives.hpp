@@ -147,6 +147,9 @@ class DifferenceShape : public Shape {
   std::vector<ShapePtr> cut_;
 };
 
+// "(x, y)" or "(x, y, z)", 6 significant digits, for messages.
+std::string format_point(const Eigen::Vector3d& v, int dim);
+
 // True when the boxes overlap (touching counts as overlapping).
 bool overlaps(const Aabb& a, const Aabb& b);
 

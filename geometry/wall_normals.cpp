@@ -22,15 +22,6 @@ unsigned open_face_bits(const std::vector<std::string>& open) {
   return bits;
 }
 
-std::string point_text(const Eigen::Vector3d& p, int dim) {
-  std::ostringstream s;
-  s.precision(6);
-  s << "(" << p.x() << ", " << p.y();
-  if (dim == 3) s << ", " << p.z();
-  s << ")";
-  return s.str();
-}
-
 }  // namespace
 
 std::vector<Eigen::Vector3d> wall_normals(const BodyGeometry& body,
@@ -66,14 +57,14 @@ std::vector<Eigen::Vector3d> wall_normals(const BodyGeometry& body,
       why = "it lies " + std::to_string(n.norm() / dp) + " dp from the surface, beyond its " +
             std::to_string(body.layers) + " wall layers";
     else if (!fluid_side && n.norm() > tol)
-      why = "its ghost node " + point_text(ghost, opt.dim) +
+      why = "its ghost node " + format_point(ghost, opt.dim) +
             " falls inside the solid (is the body thinner than twice its wall layers, or "
             "the mesh not closed?)";
     if (!why.empty()) {
 #pragma omp critical(swell_wall_normals)
       if (error.empty())
         error = "boundary body '" + body.name + "': cannot compute the mDBC normal of the wall " +
-                "particle at " + point_text(x, opt.dim) + ": " + why;
+                "particle at " + format_point(x, opt.dim) + ": " + why;
     }
   }
   if (!error.empty()) throw std::invalid_argument(error);

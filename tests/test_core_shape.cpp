@@ -13,6 +13,7 @@
 #include "bc/moving_bodies.hpp"
 #include "io/case_file.hpp"
 #include "io/hdf5_file.hpp"
+#include "tests/case_run.hpp"
 
 namespace swell {
 namespace {
@@ -153,16 +154,7 @@ std::string paddle_case(double t_end, double amplitude = 0.01) {
 
 RunSummary run(const std::string& text, const fs::path& dir, bool restart, int threads,
                bool overwrite = false) {
-  const CaseSpec spec = parse_case_text(text, "paddle.yaml");
-  RunOptions opt;
-  opt.out_dir = dir.string();
-  opt.progress = false;
-  opt.restart = restart;
-  opt.overwrite = overwrite;
-  opt.threads = threads;
-  std::ostringstream log;
-  opt.log = &log;
-  return run_case(spec, opt);
+  return test::run_case_text(text, "paddle.yaml", dir, restart, threads, overwrite);
 }
 
 std::string read_text(const fs::path& p) {

@@ -22,6 +22,7 @@
 #include "io/hdf5_file.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/physics/kernels.hpp"
+#include "tests/case_run.hpp"
 
 namespace swell {
 namespace {
@@ -417,15 +418,7 @@ TEST(MdbcRun, StillTank3DWallPressureAndGap) {
 }
 
 RunSummary run_dir(const std::string& text, const fs::path& dir, bool restart, int threads) {
-  const CaseSpec spec = parse_case_text(text, "mdbc_restart.yaml");
-  RunOptions opt;
-  opt.out_dir = dir.string();
-  opt.progress = false;
-  opt.restart = restart;
-  opt.threads = threads;
-  std::ostringstream log;
-  opt.log = &log;
-  return run_case(spec, opt);
+  return test::run_case_text(text, "mdbc_restart.yaml", dir, restart, threads);
 }
 
 std::string dambreak_mdbc(double t_end, const std::string& slip) {

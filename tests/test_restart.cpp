@@ -14,6 +14,7 @@
 #include "apps/probe_command.hpp"
 #include "io/case_file.hpp"
 #include "io/hdf5_file.hpp"
+#include "tests/case_run.hpp"
 
 namespace swell {
 namespace {
@@ -46,15 +47,7 @@ fs::path fresh_dir(const std::string& name) {
 }
 
 RunSummary run(const std::string& text, const fs::path& dir, bool restart, int threads) {
-  const CaseSpec spec = parse_case_text(text, "restart_case.yaml");
-  RunOptions opt;
-  opt.out_dir = dir.string();
-  opt.progress = false;
-  opt.restart = restart;
-  opt.threads = threads;
-  std::ostringstream log;
-  opt.log = &log;
-  return run_case(spec, opt);
+  return test::run_case_text(text, "restart_case.yaml", dir, restart, threads);
 }
 
 std::string read_text(const fs::path& p) {
