@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -24,6 +25,14 @@ inline RunSummary run_case_text(const std::string& text, const std::string& labe
   std::ostringstream log;
   opt.log = &log;
   return run_case(spec, opt);
+}
+
+// The whole content of a text file (empty if it cannot be read).
+inline std::string read_text(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
 }
 
 }  // namespace swell::test

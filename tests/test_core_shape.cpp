@@ -157,12 +157,7 @@ RunSummary run(const std::string& text, const fs::path& dir, bool restart, int t
   return test::run_case_text(text, "paddle.yaml", dir, restart, threads, overwrite);
 }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using test::read_text;
 
 TEST(MovingBodies, RestartWithMotionIsBitwise) {
   const fs::path a = fresh_dir("full"), b = fresh_dir("split");
