@@ -48,6 +48,9 @@ std::vector<BenchCase> builtin_cases() {
       // The same cases with mDBC walls (bc/mdbc): the cost of the ghost nodes (no reference).
       {"b2d_mdbc", "b2d_mdbc.yaml", 0.01, {}},
       {"b3d_mdbc", "b3d_mdbc.yaml", 0.02, {}},
+      // And with particle shifting (solver/physics/shifting.hpp): the cost of its two passes.
+      {"b2d_shift", "b2d_shift.yaml", 0.01, {}},
+      {"b3d_shift", "b3d_shift.yaml", 0.02, {}},
   };
 }
 
@@ -177,8 +180,10 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
     const auto it =
         std::find_if(all.begin(), all.end(), [&](const auto& c) { return c.name == name; });
     if (it == all.end())
-      throw std::invalid_argument("bench: unknown case '" + name +
-                                  "' (expected b2d, b3d, b3d_fine, b2d_mdbc or b3d_mdbc)");
+      throw std::invalid_argument(
+          "bench: unknown case '" + name +
+          "' (expected b2d, b3d, b3d_fine, b2d_mdbc, b3d_mdbc, b2d_shift or "
+          "b3d_shift)");
     cases.push_back(*it);
   }
 

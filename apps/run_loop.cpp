@@ -26,6 +26,7 @@
 #include "io/run_folder.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
+#include "solver/physics/shifting.hpp"
 #include "swell/version.hpp"
 
 namespace swell {
@@ -122,6 +123,20 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
                                    "height above; set domain: to change)"
                                  : " (from the case file)")
         << "\n";
+  }
+  {
+    const auto& pr = setup.params;
+    log << "  walls: " << boundary_name(pr.boundary);
+    if (pr.boundary == BoundaryType::Mdbc)
+      log << " (slip " << mdbc_slip_name(pr.mdbc_slip) << ", det_min " << pr.mdbc_det_min << ")";
+    log << "; shifting: " << shifting_name(pr.shifting);
+    if (pr.shifting == ShiftingModel::Fickian) {
+      ShiftingParams sp;
+      sp.surface_threshold = pr.shift_surface_threshold;
+      log << " (dr = -A h |v| dt grad C, A = " << pr.shift_coefficient
+          << ", free surface where div r < " << sp.threshold(D) << ")";
+    }
+    log << "\n";
   }
   for (const auto& w : setup.warnings) log << "  " << w << "\n";
 

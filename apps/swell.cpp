@@ -160,8 +160,10 @@ int main(int argc, char** argv) {
       "bench", "performance benchmark: B2D, B3D (DualSPHysics' cases), 1 and 2 threads, scaling");
   bench
       ->add_option("cases", bench_opt.cases,
-                   "b2d, b3d, b3d_fine (default: these three); b2d_mdbc, b3d_mdbc (mDBC walls)")
-      ->check(CLI::IsMember({"b2d", "b3d", "b3d_fine", "b2d_mdbc", "b3d_mdbc"}));
+                   "b2d, b3d, b3d_fine (default: these three); b2d_mdbc, b3d_mdbc (mDBC walls); "
+                   "b2d_shift, b3d_shift (particle shifting)")
+      ->check(CLI::IsMember(
+          {"b2d", "b3d", "b3d_fine", "b2d_mdbc", "b3d_mdbc", "b2d_shift", "b3d_shift"}));
   bench->add_option("--threads", bench_threads, "thread counts t1,t2 (default 1,2)");
   bench->add_option("--repeats", bench_opt.repeats, "runs per point; medians are reported")
       ->check(kCount);

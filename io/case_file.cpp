@@ -197,6 +197,7 @@ class CaseReader : private NodeReader {
   void read_viscosity(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_diffusion(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_boundary(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_shifting(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_density_bounds(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_time(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_domain(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
@@ -260,7 +261,7 @@ void CaseReader::read_physics(const YAML::Node& node, const std::string& path,
                               CaseSpec& spec) const {
   expect_map(node, path,
              {"rho0", "gravity", "coefsound", "coefh", "hswl", "kernel", "viscosity",
-              "density_diffusion", "density_bounds", "boundary"});
+              "density_diffusion", "density_bounds", "boundary", "shifting"});
   const auto positive = [](double v) { return v > 0.0; };
   if (auto v = find(node, "rho0")) {
     spec.rho0 = number_if(*v, child(path, "rho0"), positive, "a number > 0");
@@ -294,6 +295,35 @@ void CaseReader::read_physics(const YAML::Node& node, const std::string& path,
     read_density_bounds(*v, child(path, "density_bounds"), spec);
   }
   if (auto v = find(node, "boundary")) read_boundary(*v, child(path, "boundary"), spec);
+  if (auto v = find(node, "shifting")) read_shifting(*v, child(path, "shifting"), spec);
+}
+
+// `shifting: {model: none}` or `{model: fickian, coefficient: 2, surface_threshold: 1.5}`.
+void CaseReader::read_shifting(const YAML::Node& node, const std::string& path,
+                               CaseSpec& spec) const {
+  expect(node.IsMap(), node, path, "a map such as {model: fickian}");
+  if (auto v = find(node, "model")) {
+    spec.shifting = model(*v, child(path, "model"), kShiftingModels, shifting_name);
+  }
+  if (spec.shifting == ShiftingModel::None) {
+    check_keys(node, path, {"model"}, " for model none");
+    return;
+  }
+  check_keys(node, path, {"model", "coefficient", "surface_threshold"}, " for model fickian");
+  if (auto v = find(node, "coefficient")) {
+    // Skillen et al. (2013) and DualSPHysics use 2; beyond ~10 the shift per step is no longer
+    // small against dp.
+    spec.shift_coefficient = number_if(
+        *v, child(path, "coefficient"), [](double a) { return a > 0.0 && a <= 10.0; },
+        "a number in (0, 10] (default 2)");
+  }
+  if (auto v = find(node, "surface_threshold")) {
+    // div r is ~dim inside the fluid and ~dim/2 on a flat surface.
+    const double dim = spec.dim;
+    spec.shift_surface_threshold = number_if(
+        *v, child(path, "surface_threshold"), [dim](double t) { return t > 0.0 && t < dim; },
+        "a number in (0, dim) (default 1.5 in 2D, 2.75 in 3D)");
+  }
 }
 
 // `boundary: {model: dbc}` or `{model: mdbc, slip: wall|noslip|freeslip, det_min: 1e-3}`.

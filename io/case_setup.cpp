@@ -19,6 +19,7 @@
 #include "geometry/wall_normals.hpp"
 #include "io/case_file.hpp"
 #include "io/case_geometry.hpp"
+#include "solver/time/shifting_hook.hpp"
 
 namespace swell {
 
@@ -146,6 +147,9 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   p.boundary = spec.boundary;
   p.mdbc_slip = spec.mdbc_slip;
   p.mdbc_det_min = spec.mdbc_det_min;
+  p.shifting = spec.shifting;
+  p.shift_coefficient = spec.shift_coefficient;
+  p.shift_surface_threshold = spec.shift_surface_threshold;
   p.dt_collapse_factor = spec.dt_collapse;
 
   // Motion laws (checked here: a bad CSV series or spec is a case error at the body's line).
@@ -426,6 +430,12 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
   typename Simulation<D>::Hooks hooks;
   if (MovingBodies<D>::any_moves(setup.motions))
     hooks.push_back(std::make_unique<MovingBodies<D>>(setup.motions));
+  if (setup.params.shifting == ShiftingModel::Fickian) {
+    ShiftingParams sp;
+    sp.coefficient = setup.params.shift_coefficient;
+    sp.surface_threshold = setup.params.shift_surface_threshold;
+    hooks.push_back(std::make_unique<ShiftingHook<D>>(sp));
+  }
   std::unique_ptr<BoundaryModel<D>> wall =
       setup.params.boundary == BoundaryType::Mdbc
           ? make_mdbc<D>(setup.params.mdbc_slip, setup.params.mdbc_det_min)

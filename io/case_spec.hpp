@@ -108,6 +108,11 @@ struct CaseSpec {
   BoundaryType boundary = BoundaryType::Dbc;
   MdbcSlip mdbc_slip = MdbcSlip::Wall;
   double mdbc_det_min = 1e-3;
+  // Particle shifting: none | fickian, its coefficient A and free-surface threshold on div r
+  // (0: the default for the dimension).
+  ShiftingModel shifting = ShiftingModel::None;
+  double shift_coefficient = 2.0;
+  double shift_surface_threshold = 0.0;
 
   // time
   double t_end = 0.0;

@@ -21,6 +21,7 @@ inline constexpr std::array kDiffusionModels{
 inline constexpr std::array kIntegratorTypes{IntegratorType::Symplectic, IntegratorType::Verlet};
 inline constexpr std::array kBoundaryTypes{BoundaryType::Dbc, BoundaryType::Mdbc};
 inline constexpr std::array kMdbcSlips{MdbcSlip::Wall, MdbcSlip::NoSlip, MdbcSlip::FreeSlip};
+inline constexpr std::array kShiftingModels{ShiftingModel::None, ShiftingModel::Fickian};
 
 // The kernel type's own name (its kName: wendland, cubic, quintic, gaussian), the name
 // kernel_from_name() reads back.
@@ -81,6 +82,16 @@ inline const char* mdbc_slip_name(MdbcSlip m) {
       return "freeslip";
   }
   return "slip";
+}
+
+inline const char* shifting_name(ShiftingModel m) {
+  switch (m) {
+    case ShiftingModel::None:
+      return "none";
+    case ShiftingModel::Fickian:
+      return "fickian";
+  }
+  return "shifting";
 }
 
 }  // namespace swell

@@ -16,6 +16,9 @@ enum class BoundaryType { Dbc, Mdbc };
 // DualSPHysics' default); NoSlip: 2 v_body - v_ghost; FreeSlip: the ghost velocity with its
 // normal component mirrored about the body's.
 enum class MdbcSlip { Wall, NoSlip, FreeSlip };
+// Particle shifting after each step (solver/physics/shifting.hpp): none, or Fickian (Lind et
+// al. 2012 with Skillen et al. 2013's coefficient, tangential only at the free surface).
+enum class ShiftingModel { None, Fickian };
 
 struct SolverParams {
   double dp = 0.0;
@@ -43,6 +46,9 @@ struct SolverParams {
   // mDBC: below this determinant of the ghost node's correction matrix the first-order
   // extrapolation is replaced by a Shepard average (DualSPHysics' default, 1e-3).
   double mdbc_det_min = 1e-3;
+  ShiftingModel shifting = ShiftingModel::None;
+  double shift_coefficient = 2.0;        // A in dr = -A h |v| dt grad C
+  double shift_surface_threshold = 0.0;  // div r below it: free surface (0: 1.5 in 2D, 2.75 in 3D)
   Eigen::Vector3d domain_min = Eigen::Vector3d::Zero(), domain_max = Eigen::Vector3d::Zero();
 
   double eta2() const { return 0.01 * h * h; }

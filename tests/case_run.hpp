@@ -9,6 +9,7 @@
 
 #include "apps/case_runner.hpp"
 #include "io/case_file.hpp"
+#include "io/hdf5_file.hpp"
 
 namespace swell::test {
 
@@ -25,6 +26,22 @@ inline RunSummary run_case_text(const std::string& text, const std::string& labe
   std::ostringstream log;
   opt.log = &log;
   return run_case(spec, opt);
+}
+
+// The restart check: `full` run in one go into folder a (2 threads); into folder b, `half`
+// (1 thread), then `full` again with --restart (2 threads). Returns both final checkpoints.
+template <int D>
+std::pair<Checkpoint<D>, Checkpoint<D>> split_run(const std::string& full, const std::string& half,
+                                                  const std::string& label,
+                                                  const std::filesystem::path& a,
+                                                  const std::filesystem::path& b) {
+  std::filesystem::remove_all(a);
+  std::filesystem::remove_all(b);
+  run_case_text(full, label, a, false, 2);
+  run_case_text(half, label, b, false, 1);
+  run_case_text(full, label, b, true, 2);
+  return {read_checkpoint<D>((a / "checkpoint.h5").string()),
+          read_checkpoint<D>((b / "checkpoint.h5").string())};
 }
 
 // The whole content of a text file (empty if it cannot be read).

@@ -1,0 +1,42 @@
+// Particle shifting as a step hook: after each step's integration, every fluid particle is
+// displaced by the Fickian shift of solver/physics/shifting.hpp, computed from the positions
+// the step ended at and |v| dt of that step. Stateless (nothing in the checkpoint), so a
+// restarted run continues bitwise.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solver/physics/kernels.hpp"
+#include "solver/physics/shifting.hpp"
+#include "solver/time/step_hooks.hpp"
+
+namespace swell {
+
+template <int D>
+class ShiftingHook final : public StepHook<D> {
+ public:
+  explicit ShiftingHook(const ShiftingParams& p) : p_(p) {}
+  std::string name() const override { return "shifting"; }
+
+  void after_integration(StepState<D>& s) override {
+    ParticleSet<D>& ps = s.particles;
+    stats_ = with_kernel<D>(s.params.kernel, s.params.h, [&](const auto& kernel) {
+      return compute_shifting<D>(ps, s.grid, kernel, p_, s.params.dp, s.dt, shift_, normal_);
+    });
+    const long n = static_cast<long>(ps.size());
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) ps.pos[i] += shift_[static_cast<std::size_t>(i)];
+  }
+
+  const ShiftingStats& stats() const {
+    return stats_;
+  }
+
+ private:
+  ShiftingParams p_;
+  ShiftingStats stats_;
+  std::vector<Vec<D>> shift_, normal_;  // grow to the particle count once, then reused
+};
+
+}  // namespace swell
