@@ -37,6 +37,8 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <new>
+#include <stdexcept>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -284,16 +286,26 @@ void make_free_of_self_intersections(Mesh& mesh, const std::string& path, bool r
   // First CGAL's local removal (smoothing or re-filling small patches: meshing defects); if
   // that fails, autorefinement, which cuts the faces along their intersections and drops the
   // parts inside the solid (overlapping closed parts become their union).
+  // CGAL gives up on some configurations by throwing (autorefinement: "Non-handled triple
+  // intersection of input triangles", found by fuzzing): a mesh error like the others.
   const Mesh original = mesh;
   const char* how = "local removal";
-  bool fixed = PMP::experimental::remove_self_intersections(mesh);
-  mesh.collect_garbage();
-  fixed = fixed && CGAL::is_closed(mesh) && count_self_intersections(mesh) == 0;
-  if (!fixed) {
-    mesh = original;
-    how = "autorefinement";
-    fixed = PMP::experimental::autorefine_and_remove_self_intersections(mesh);
+  bool fixed = false;
+  try {
+    fixed = PMP::experimental::remove_self_intersections(mesh);
     mesh.collect_garbage();
+    fixed = fixed && CGAL::is_closed(mesh) && count_self_intersections(mesh) == 0;
+    if (!fixed) {
+      mesh = original;
+      how = "autorefinement";
+      fixed = PMP::experimental::autorefine_and_remove_self_intersections(mesh);
+      mesh.collect_garbage();
+    }
+  } catch (const std::exception& e) {
+    throw MeshError(path + ": " + pairs + " of faces intersect and CGAL's self-intersection " +
+                    "removal (" + how + ") gave up: " + e.what() +
+                    "; fix the mesh in a mesh editor (e.g. a boolean union of the overlapping "
+                    "parts)");
   }
   const std::size_t left = count_self_intersections(mesh);
   const bool closed = CGAL::is_closed(mesh);
@@ -339,8 +351,10 @@ struct MeshSolid::Impl {
   std::string name;  // file name without folders, for describe()
 };
 
+// Any other exception out of CGAL (a precondition or an unhandled configuration) is a mesh
+// error too: the file is named, and a run stops with exit 2 instead of an internal error.
 std::shared_ptr<MeshSolid> MeshSolid::load(const std::string& path, const Placement& placement,
-                                           bool repair, MeshReport* report) {
+                                           bool repair, MeshReport* report) try {
   auto impl = std::make_unique<Impl>();
   MeshReport& rep = impl->report;
   rep.file = path;
@@ -444,6 +458,13 @@ std::shared_ptr<MeshSolid> MeshSolid::load(const std::string& path, const Placem
 
   if (report) *report = rep;
   return std::shared_ptr<MeshSolid>(new MeshSolid(std::move(impl)));
+} catch (const MeshError&) {
+  throw;
+} catch (const std::bad_alloc&) {
+  throw;
+} catch (const std::exception& e) {
+  throw MeshError(path + ": CGAL could not process this mesh (" + e.what() +
+                  "); check it in a mesh editor");
 }
 
 MeshSolid::MeshSolid(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

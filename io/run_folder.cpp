@@ -46,8 +46,13 @@ long vtk_index(std::string_view f, const std::string& name) {
 
 }  // namespace
 
-OutputLock::OutputLock(const std::string& dir) {
+OutputLock::OutputLock(const std::string& dir) : dir_(dir) {
   std::error_code ec;
+  for (fs::path p = fs::absolute(dir_, ec); !ec && !p.empty() && !fs::exists(p, ec);
+       p = p.parent_path()) {
+    created_root_ = p;
+    if (p == p.parent_path()) break;
+  }
   fs::create_directories(dir, ec);
   if (ec) throw std::runtime_error("cannot create the output folder " + dir + ": " + ec.message());
   const std::string path = (fs::path(dir) / ".swell.lock").string();
@@ -75,7 +80,22 @@ OutputLock::OutputLock(const std::string& dir) {
 }
 
 OutputLock::~OutputLock() {
-  if (fd_ >= 0) ::close(fd_);  // releases the flock
+  if (fd_ < 0) return;
+  std::error_code ec;
+  bool only_lock = !created_root_.empty();
+  if (only_lock) {
+    for (const auto& e : fs::directory_iterator(dir_, ec))
+      if (e.path().filename() != ".swell.lock") only_lock = false;
+    only_lock = only_lock && !ec;
+  }
+  if (only_lock) fs::remove(dir_ / ".swell.lock", ec);  // before the flock goes: no new holder
+  ::close(fd_);                                         // releases the flock
+  if (!only_lock || ec) return;
+  // The folders created for this run, now empty, innermost first (remove() keeps non-empty
+  // ones, e.g. one another process has just started to use).
+  for (fs::path p = fs::absolute(dir_, ec); !ec && !p.empty(); p = p.parent_path()) {
+    if (!fs::remove(p, ec) || p == created_root_) break;
+  }
 }
 
 std::vector<std::string> run_files(const std::string& dir) {

@@ -2,6 +2,7 @@
 // left there, and their removal (`--overwrite`).
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -9,7 +10,9 @@ namespace swell {
 
 // An exclusive flock on DIR/.swell.lock (created with DIR if needed), released when the
 // object dies or the process ends, however it ends. Throws std::invalid_argument naming the
-// folder and the holder's pid if another process holds it.
+// folder and the holder's pid if another process holds it. A folder the lock created and
+// that holds nothing but the lock when the object dies (a run refused before it wrote
+// anything) is removed again, with the parents it created.
 class OutputLock {
  public:
   explicit OutputLock(const std::string& dir);
@@ -19,6 +22,7 @@ class OutputLock {
 
  private:
   int fd_ = -1;
+  std::filesystem::path dir_, created_root_;  // the topmost folder this lock created, if any
 };
 
 // The files in DIR that a `swell run` writes (relative names, sorted): checkpoint.h5*, run

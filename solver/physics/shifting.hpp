@@ -17,11 +17,15 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "solver/neighbours/cell_grid.hpp"
+#include "solver/neighbours/gather.hpp"
+#include "solver/neighbours/pair_driver.hpp"
 #include "solver/state/particle_set.hpp"
 
 namespace swell {
@@ -54,47 +58,142 @@ struct ShiftingTerms {
   double div_r = 0.0;
 };
 
-// Sums of particle a over the candidates of its cell (grid sorted for nearby positions: a
-// pair that came within the support since the sort is missed only beyond 2h - 2|motion|,
-// where grad W is nearly zero).
+// Buffers of compute_shifting, sized once and reused (no allocation in the time loop).
+template <int D>
+struct ShiftingWork {
+  std::vector<Vec<D>> shift;            // the displacement of each particle (0 for walls)
+  std::vector<Vec<D>> normal;           // outward surface normal (0 off the surface)
+  std::vector<double> vol;              // m / rho of each particle
+  std::vector<std::uint8_t> cell_flag;  // cells holding a surface particle
+  std::vector<Vec<D>> grad_c;           // grad C of each particle (pass 1)
+  std::vector<double> div_r;            // div r of each particle (pass 1)
+  NeighbourLists lists;                 // the pair driver's per-thread lists
+};
+
+// Pass 1 as an evaluator of the pair driver (neighbours/pair_driver.hpp), so it runs in the
+// same SIMD loop as the forces: s0..s(D-1) sum grad C with the anti-clumping term, s3 sums
+// div r. A padding entry (b == a, r = 0) adds exactly zero. Plain arithmetic, no intrinsics.
+template <int D, class Kernel>
+class ShiftingEvaluator {
+ public:
+  struct Centre {
+    double x0, x1, x2;
+  };
+  ShiftingEvaluator(const ParticleSet<D>& ps, const Kernel& kernel, const double* vol,
+                    double inv_wdp, double tensile_r, Vec<D>* grad_c, double* div_r)
+      : kernel_(kernel),
+        P_(ps.pos.data()->data()),
+        vol_(vol),
+        inv_wdp_(inv_wdp),
+        tensile_r_(tensile_r),
+        grad_c_(grad_c),
+        div_r_(div_r) {}
+
+  Centre centre(std::uint32_t a, bool) const {
+    return {P_[a * D], P_[a * D + 1], D == 3 ? P_[a * D + D - 1] : 0.0};
+  }
+  void pair(const Centre& a, std::uint32_t e, double& g0, double& g1, double& g2, double& div,
+            double&) const {
+    const std::uint32_t b = e & ~kWallBit;
+    const double r0 = a.x0 - P_[b * D], r1 = a.x1 - P_[b * D + 1];
+    const double r2c = D == 3 ? a.x2 - P_[b * D + D - 1] : 0.0;
+    const double r2 = r0 * r0 + r1 * r1 + r2c * r2c;
+    const double r = std::sqrt(std::max(r2, 1e-18));
+    const double vf = vol_[b] * kernel_.fs(r);  // V_b (1/r) dW/dr
+    const double q = kernel_.w(r) * inv_wdp_;
+    const double q2 = q * q;
+    const double t = vf * (1.0 + tensile_r_ * q2 * q2);
+    g0 += t * r0;
+    g1 += t * r1;
+    g2 += t * r2c;
+    div -= vf * r2;
+  }
+  double finish(std::uint32_t a, const Centre&, double g0, double g1, double g2, double div,
+                double) {
+    const double g[3] = {g0, g1, g2};
+    for (int d = 0; d < D; ++d) grad_c_[a][d] = g[d];
+    div_r_[a] = div;
+    return 0.0;
+  }
+  void idle(std::uint32_t a) {
+    grad_c_[a].setZero();
+    div_r_[a] = 0.0;
+  }
+
+ private:
+  Kernel kernel_;
+  const double* P_;
+  const double* vol_;
+  double inv_wdp_, tensile_r_;
+  Vec<D>* grad_c_;
+  double* div_r_;
+};
+
+// Calls fn(b, r, r2, dist) for every particle b != a within the support of particle a (grid
+// sorted for nearby positions: a pair that came within the support since the sort is missed
+// only beyond 2h - 2|motion|, where grad W is nearly zero).
+template <int D, class Kernel, class Fn>
+void for_each_shifting_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Kernel& kernel,
+                            std::size_t a, Fn&& fn) {
+  const double s2 = kernel.support() * kernel.support();
+  const Vec<D> xa = ps.pos[a];
+  grid.for_each_neighbour_range(grid.cell_of(a), [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t b = begin; b < end; ++b) {
+      const Vec<D> r = xa - ps.pos[b];
+      const double r2 = r.squaredNorm();
+      if (!(r2 < s2) || r2 == 0.0) continue;  // also a itself
+      fn(b, r, r2, std::sqrt(r2));
+    }
+  });
+}
+
+// grad C, grad C0 and div r of particle a; vol[b] = m_b / rho_b.
+template <int D, class Kernel>
+void shifting_sums(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Kernel& kernel,
+                   const std::vector<double>& vol, double inv_wdp, double tensile_r, std::size_t a,
+                   ShiftingTerms<D>& t) {
+  for_each_shifting_pair<D>(ps, grid, kernel, a,
+                            [&](std::uint32_t b, const Vec<D>& r, double r2, double dist) {
+                              const double vf = vol[b] * kernel.f(dist);  // V_b (1/r) dW/dr
+                              const double q = kernel.w(dist) * inv_wdp;
+                              const double q2 = q * q;
+                              const Vec<D> g = vf * r;  // V_b grad_a W_ab
+                              t.grad_c0 += g;
+                              t.grad_c += (1.0 + tensile_r * q2 * q2) * g;
+                              t.div_r -= vf * r2;
+                            });
+}
+
+// L^-1 of particle a (needed at the free surface only).
+template <int D, class Kernel>
+void shifting_matrix(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Kernel& kernel,
+                     const std::vector<double>& vol, std::size_t a, ShiftingTerms<D>& t) {
+  for_each_shifting_pair<D>(ps, grid, kernel, a,
+                            [&](std::uint32_t b, const Vec<D>& r, double, double dist) {
+                              t.b -= (vol[b] * kernel.f(dist)) * r * r.transpose();
+                            });
+}
+
+// Every term of particle a (for tests and diagnostics).
 template <int D, class Kernel>
 ShiftingTerms<D> shifting_terms(const ParticleSet<D>& ps, const CellGrid<D>& grid,
                                 const Kernel& kernel, double w_dp, double tensile_r,
                                 std::size_t a) {
+  std::vector<double> vol(ps.size());
+  for (std::size_t b = 0; b < ps.size(); ++b) vol[b] = ps.mass[b] / ps.rho[b];
   ShiftingTerms<D> t;
-  const double s2 = kernel.support() * kernel.support();
-  const double inv_wdp = 1.0 / w_dp;
-  const Vec<D> xa = ps.pos[a];
-  grid.for_each_candidate(a, [&](std::uint32_t b) {
-    if (b == a) return;
-    const Vec<D> r = xa - ps.pos[b];
-    const double r2 = r.squaredNorm();
-    if (!(r2 < s2) || r2 == 0.0) return;
-    const double dist = std::sqrt(r2);
-    const double f = kernel.f(dist);  // (1/r) dW/dr
-    const double V = ps.mass[b] / ps.rho[b];
-    const double q = kernel.w(dist) * inv_wdp;
-    const double q2 = q * q;
-    const Vec<D> g = (V * f) * r;  // V_b grad_a W_ab
-    t.grad_c0 += g;
-    t.grad_c += (1.0 + tensile_r * q2 * q2) * g;
-    t.div_r -= V * f * r2;
-    t.b -= (V * f) * r * r.transpose();
-  });
+  shifting_sums<D>(ps, grid, kernel, vol, 1.0 / w_dp, tensile_r, a, t);
+  shifting_matrix<D>(ps, grid, kernel, vol, a, t);
   return t;
 }
 
-// The displacement of fluid particle a for its terms; sets surface/skipped.
+// The outward normal of a surface particle from its terms: -L grad C0, normalised; zero where
+// L^-1 is nearly singular (a line of particles, a lone droplet: no surface defined, `skipped`)
+// or grad C0 vanishes (a symmetric neighbourhood).
 template <int D>
-Vec<D> shifting_displacement(const ShiftingTerms<D>& t, double diffusion, double threshold,
-                             bool& surface, bool& skipped, Vec<D>* normal = nullptr) {
-  Vec<D> dr = -diffusion * t.grad_c;
-  surface = t.div_r < threshold;
+Vec<D> surface_normal(const ShiftingTerms<D>& t, bool& skipped) {
   skipped = false;
-  if (!surface) return dr;
   const double det = t.b.determinant();
-  // L^-1 of a particle with neighbours on one side only is still invertible; a nearly
-  // singular one (a line of particles, a lone droplet) defines no surface.
   const double scale = t.b.trace() / D;
   if (!(scale > 0.0) || !(std::abs(det) > 1e-6 * std::pow(scale, D))) {
     skipped = true;
@@ -102,28 +201,44 @@ Vec<D> shifting_displacement(const ShiftingTerms<D>& t, double diffusion, double
   }
   const Vec<D> m = t.b.inverse() * t.grad_c0;
   const double len = m.norm();
-  if (!(len > 0.0)) return dr;  // symmetric neighbourhood: no preferred normal
-  const Vec<D> n = -m / len;
-  if (normal) *normal = n;
-  dr -= dr.dot(n) * n;
-  return dr;
+  return len > 0.0 ? Vec<D>(-m / len) : Vec<D>::Zero();
 }
 
-// Computes every fluid particle's displacement into `shift` (sized to ps.size(); walls get 0)
-// for a step dt, without moving anything. Two passes: the first finds the free-surface
-// particles and their normals (`normal`, zero elsewhere); the second removes the normal part
-// from the shift of every particle within the kernel support of a surface particle too (the
-// free-surface region of Lind et al. 2012), along the kernel-weighted mean of those surface
-// normals, so the rows just under the surface are not pushed out through it either.
-// Parallel; no allocation once `shift` and `normal` have their size.
+// Computes every fluid particle's displacement into work.shift (walls get 0) for a step dt,
+// without moving anything:
+//   1. every particle: grad C and div r, in the pair driver's SIMD loop (ShiftingEvaluator);
+//   2. the fluid particles at the free surface (div r < threshold): L and grad C0 (a scalar
+//      loop over their neighbours), the surface normal, and the shift loses its normal part (a
+//      surface particle without a defined normal is not shifted);
+//   3. every other fluid particle within the kernel support of a surface particle (the free-
+//      surface region of Lind et al. 2012) loses the normal part too, along the kernel-weighted
+//      mean of those particles' normals, so the rows just under the surface are not pushed out
+//      through it either. Only particles in cells next to a surface particle's cell look.
+// A particle at rest has no shift (D = A h |v| dt = 0). Parallel; no allocation once the
+// buffers have their size.
 template <int D, class Kernel>
 ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid,
                                const Kernel& kernel, const ShiftingParams& sp, double dp, double dt,
-                               std::vector<Vec<D>>& shift, std::vector<Vec<D>>& normal) {
-  const long n = static_cast<long>(ps.size());
-  if (shift.size() < ps.size()) shift.resize(ps.size());
-  if (normal.size() < ps.size()) normal.resize(ps.size());
-  const double w_dp = kernel.w(dp);
+                               ShiftingWork<D>& work) {
+  const std::size_t np = ps.size();
+  const long n = static_cast<long>(np);
+  if (work.shift.size() < np) work.shift.resize(np);
+  if (work.normal.size() < np) work.normal.resize(np);
+  if (work.vol.size() < np) work.vol.resize(np);
+  if (work.grad_c.size() < np) work.grad_c.resize(np);
+  if (work.div_r.size() < np) work.div_r.resize(np);
+  if (work.cell_flag.size() < grid.num_cells()) work.cell_flag.resize(grid.num_cells());
+  std::vector<Vec<D>>& shift = work.shift;
+  std::vector<Vec<D>>& normal = work.normal;
+  const std::vector<double>& vol = work.vol;
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) work.vol[i] = ps.mass[i] / ps.rho[i];
+  const double inv_wdp = 1.0 / kernel.w(dp);
+  for_each_pair<D, WallsSeeFluid>(
+      ps, grid, kernel.support(),
+      ShiftingEvaluator<D, Kernel>(ps, kernel, work.vol.data(), inv_wdp, sp.tensile_r,
+                                   work.grad_c.data(), work.div_r.data()),
+      work.lists);
   const double threshold = sp.threshold(D);
   const double ah_dt = sp.coefficient * kernel.h * dt;
   std::size_t surface = 0, skipped = 0;
@@ -131,35 +246,58 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
   for (long i = 0; i < n; ++i) {
     const auto a = static_cast<std::size_t>(i);
     normal[a].setZero();
-    if (ps.role[a] != Role::Fluid) {
+    shift[a].setZero();
+    if (ps.role[a] != Role::Fluid) continue;
+    const double diffusion = ah_dt * ps.vel[a].norm();
+    if (!(diffusion > 0.0)) continue;
+    shift[a] = -diffusion * work.grad_c[a];
+    if (!(work.div_r[a] < threshold)) continue;
+    ++surface;
+    ShiftingTerms<D> t;
+    for_each_shifting_pair<D>(ps, grid, kernel, a,
+                              [&](std::uint32_t b, const Vec<D>& r, double, double dist) {
+                                const double vf = vol[b] * kernel.f(dist);
+                                t.grad_c0 += vf * r;
+                                t.b -= vf * r * r.transpose();
+                              });
+    bool skip = false;
+    normal[a] = surface_normal<D>(t, skip);
+    if (skip) {
+      ++skipped;
       shift[a].setZero();
-      continue;
+    } else {
+      shift[a] -= shift[a].dot(normal[a]) * normal[a];
     }
-    const ShiftingTerms<D> t = shifting_terms<D>(ps, grid, kernel, w_dp, sp.tensile_r, a);
-    bool at_surface = false, skip = false;
-    shift[a] = shifting_displacement<D>(t, ah_dt * ps.vel[a].norm(), threshold, at_surface, skip,
-                                        &normal[a]);
-    surface += at_surface;
-    skipped += skip;
   }
+  // Cells holding a surface particle (serial: a byte per surface particle).
+  std::fill(work.cell_flag.begin(), work.cell_flag.begin() + static_cast<long>(grid.num_cells()),
+            std::uint8_t{0});
+  for (std::size_t a = 0; a < np; ++a)
+    if (normal[a].squaredNorm() > 0.0) work.cell_flag[grid.cell_of(a)] = 1;
   std::size_t shifted = 0;
   double max2 = 0.0;
-  const double s2 = kernel.support() * kernel.support();
+  const std::vector<std::uint8_t>& flag = work.cell_flag;
 #pragma omp parallel for schedule(dynamic, 256) reduction(+ : shifted) reduction(max : max2)
   for (long i = 0; i < n; ++i) {
     const auto a = static_cast<std::size_t>(i);
     if (ps.role[a] != Role::Fluid) continue;
     if (normal[a].squaredNorm() == 0.0 && shift[a].squaredNorm() > 0.0) {
-      Vec<D> m = Vec<D>::Zero();
-      grid.for_each_candidate(a, [&](std::uint32_t b) {
-        if (normal[b].squaredNorm() == 0.0) return;
-        const double r2 = (ps.pos[a] - ps.pos[b]).squaredNorm();
-        if (r2 < s2) m += kernel.w(std::sqrt(r2)) * normal[b];
+      bool near = false;
+      grid.for_each_neighbour_row(grid.cell_of(a), [&](std::size_t row) {
+        near = near || flag[row - 1] || flag[row] || flag[row + 1];
       });
-      const double len = m.norm();
-      if (len > 0.0) {
-        const Vec<D> u = m / len;
-        shift[a] -= shift[a].dot(u) * u;
+      if (near) {
+        Vec<D> m = Vec<D>::Zero();
+        for_each_shifting_pair<D>(ps, grid, kernel, a,
+                                  [&](std::uint32_t b, const Vec<D>&, double, double dist) {
+                                    if (normal[b].squaredNorm() > 0.0)
+                                      m += kernel.w(dist) * normal[b];
+                                  });
+        const double len = m.norm();
+        if (len > 0.0) {
+          const Vec<D> u = m / len;
+          shift[a] -= shift[a].dot(u) * u;
+        }
       }
     }
     const double d2 = shift[a].squaredNorm();

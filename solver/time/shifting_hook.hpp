@@ -22,11 +22,11 @@ class ShiftingHook final : public StepHook<D> {
   void after_integration(StepState<D>& s) override {
     ParticleSet<D>& ps = s.particles;
     stats_ = with_kernel<D>(s.params.kernel, s.params.h, [&](const auto& kernel) {
-      return compute_shifting<D>(ps, s.grid, kernel, p_, s.params.dp, s.dt, shift_, normal_);
+      return compute_shifting<D>(ps, s.grid, kernel, p_, s.params.dp, s.dt, work_);
     });
     const long n = static_cast<long>(ps.size());
 #pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) ps.pos[i] += shift_[static_cast<std::size_t>(i)];
+    for (long i = 0; i < n; ++i) ps.pos[i] += work_.shift[static_cast<std::size_t>(i)];
   }
 
   const ShiftingStats& stats() const {
@@ -36,7 +36,7 @@ class ShiftingHook final : public StepHook<D> {
  private:
   ShiftingParams p_;
   ShiftingStats stats_;
-  std::vector<Vec<D>> shift_, normal_;  // grow to the particle count once, then reused
+  ShiftingWork<D> work_;
 };
 
 }  // namespace swell
