@@ -37,12 +37,12 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <new>
-#include <stdexcept>
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <new>
 #include <sstream>
+#include <stdexcept>
 
 #include "geometry/lattice_fill.hpp"
 
