@@ -211,6 +211,11 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     sim->restore_faces(f);
   }
   Watchdog<D> watchdog(spec.watchdog, *sim, setup.floor);
+  {
+    std::vector<std::string> names;
+    for (const auto& b : setup.bodies) names.push_back(b.name);
+    watchdog.set_body_names(std::move(names));
+  }
   double last_checkpoint = opt.restart ? resume_after : -1.0;
 
   const double t_end = spec.t_end;

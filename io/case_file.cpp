@@ -70,9 +70,28 @@ int line_of(const YAML::Node& node) {
   return mark.is_null() ? 1 : mark.line + 1;
 }
 
+// A scalar as it can be shown in a message: control characters (a NUL would end the message
+// where it is printed) as \xHH, and at most 200 characters.
+std::string printable(const std::string& s) {
+  std::string out;
+  for (const char c : s.substr(0, 200)) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[u >> 4];
+      out += hex[u & 15];
+    } else {
+      out += c;
+    }
+  }
+  if (s.size() > 200) out += "...";
+  return out;
+}
+
 std::string describe(const YAML::Node& node) {
-  if (is_plain_scalar(node)) return "'" + node.Scalar() + "'";
-  if (node.IsScalar()) return "the quoted string '" + node.Scalar() + "'";
+  if (is_plain_scalar(node)) return "'" + printable(node.Scalar()) + "'";
+  if (node.IsScalar()) return "the quoted string '" + printable(node.Scalar()) + "'";
   if (node.IsSequence()) {
     if (auto shown = short_list(node)) return *shown;
     return "a list of " + std::to_string(node.size()) + (node.size() == 1 ? " item" : " items");

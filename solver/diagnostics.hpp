@@ -8,6 +8,8 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "solver/state/particle_set.hpp"
 #include "solver/time/simulation.hpp"
@@ -97,6 +99,8 @@ class Watchdog {
   }
 
   bool due(long step) const { return step % lim_.every == 0; }
+  // The case's body names (by body index), for messages that name a wall particle's body.
+  void set_body_names(std::vector<std::string> names) { body_names_ = std::move(names); }
   // Fluid mass excluded so far, as a fraction of the initial fluid mass (after check()).
   double excluded_fraction() const { return excluded_; }
   bool warned() const { return warned_; }
@@ -131,10 +135,13 @@ class Watchdog {
     if (excluded_ > lim_.max_excluded_fraction) throw_excluded(sim, t, step);
     if (wall_i < ps.size() && wall_rho > lim_.max_density_factor * rho0_) {
       std::ostringstream m;
-      m << "wall particle " << ps.id[wall_i] << " (body " << ps.body[wall_i] << ") at "
-        << where(ps.pos[wall_i]) << " has density " << wall_rho / rho0_ << " rho0 at t = " << t
-        << " s (step " << step << "), over watchdog.max_density = " << lim_.max_density_factor
-        << " rho0 (pressure " << pressure_factor(wall_rho / rho0_)
+      const std::size_t body = ps.body[wall_i];
+      m << "wall particle " << ps.id[wall_i] << " (body "
+        << (body < body_names_.size() ? "'" + body_names_[body] + "'" : std::to_string(body))
+        << ") at " << where(ps.pos[wall_i]) << " has density " << wall_rho / rho0_
+        << " rho0 at t = " << t << " s (step " << step
+        << "), over watchdog.max_density = " << lim_.max_density_factor << " rho0 (pressure "
+        << pressure_factor(wall_rho / rho0_)
         << ". Likely cause: an impact too violent for the wall (raise physics.coefsound, lower "
         << "time.cfl, or refine dp)";
       throw InstabilityError(m.str());
@@ -255,6 +262,7 @@ class Watchdog {
   }
 
   WatchdogLimits lim_;
+  std::vector<std::string> body_names_;
   int up_ = D - 1;
   double sign_ = 1.0, dp_ = 0.0, rho0_ = 1000.0, bottom_ = 0.0;
   double mass0_ = 0.0;

@@ -268,6 +268,12 @@ TEST(Watchdog, WallDensityFarFromRho0Stops) {
   Watchdog<2> w(WatchdogLimits{}, sim, 0.0);
   const std::string m = check_message(w, sim);
   expect_contains(m, {"wall particle 3", "density 2.5 rho0", "watchdog.max_density = 2 rho0"});
+  // With the case's body names the message names the body, not its index.
+  const std::size_t body = rig.ps.body[3];
+  std::vector<std::string> names(body + 1, "other");
+  names[body] = "tank";
+  w.set_body_names(names);
+  expect_contains(check_message(w, sim), {"wall particle 3 (body 'tank')"});
   WatchdogLimits loose;
   loose.max_density_factor = 3.0;
   Watchdog<2> w3(loose, sim, 0.0);
