@@ -70,6 +70,54 @@ TEST(Metrics, PeakValueAndTimeErrors) {
   EXPECT_TRUE(std::isnan(window_peak(run, Window{2.0, 3.0}).value));
 }
 
+// Loads: the impulse of a sine's half wave is 2A/(2 pi) per unit period, the mean of a
+// constant plateau is the plateau, and a spike narrower than the filter width tau reads
+// (its area) / tau after the boxcar filter, while its raw peak is its height.
+TEST(Metrics, ImpulseMeanAndFilteredPeak) {
+  const Series half = sampled(shifted_sine, 3.0, 0.0, 0.0, 1.0, 0.0005);
+  EXPECT_NEAR(integral(half, Window{0.0, 0.5}), 3.0 / kPi, 1e-6);
+  // Window ends between samples: the series is interpolated there.
+  EXPECT_NEAR(integral(half, Window{0.1, 0.4}),
+              3.0 / (2 * kPi) * (std::cos(2 * kPi * 0.1) - std::cos(2 * kPi * 0.4)), 1e-6);
+  // A plateau of 0.7 from t = 2 to 6 with a triangular spike of height 10, base 0.02 at t = 2.5.
+  Series p;
+  for (double t = 0.0; t <= 8.0 + 1e-12; t += 0.001) {
+    p.t.push_back(t);
+    double v = (t >= 2.0 && t <= 6.0) ? 0.7 : 0.0;
+    v += std::max(0.0, 10.0 * (1.0 - std::abs(t - 2.5) / 0.01));
+    p.v.push_back(v);
+  }
+  Series ref = p;  // the reference: the same plateau, a spike of height 2 and base 0.1
+  for (std::size_t i = 0; i < ref.t.size(); ++i)
+    ref.v[i] = (ref.t[i] >= 2.0 && ref.t[i] <= 6.0 ? 0.7 : 0.0) +
+               std::max(0.0, 2.0 * (1.0 - std::abs(ref.t[i] - 2.5) / 0.05));
+  MetricRequest req;
+  req.peak = true;
+  req.peak_window = Window{2.2, 3.0};
+  req.filter = 0.2;
+  req.impulse = true;
+  req.impulse_window = Window{2.4, 2.6};
+  req.mean = true;
+  req.mean_window = Window{3.0, 5.0};
+  const GaugeMetrics m = compute_metrics(p, ref, req);
+  EXPECT_NEAR(m.peak.value, 10.7, 1e-9);
+  EXPECT_NEAR(m.ref_peak.value, 2.7, 1e-9);
+  // Both spikes have area 0.1 and lie inside the filter: 0.7 + 0.1 / 0.2 each.
+  EXPECT_NEAR(m.filtered_peak.value, 1.2, 1e-6);
+  EXPECT_NEAR(m.ref_filtered_peak.value, 1.2, 1e-6);
+  EXPECT_NEAR(m.filtered_peak_error, 0.0, 1e-6);
+  EXPECT_NEAR(m.impulse, 0.7 * 0.2 + 0.1, 1e-6);
+  EXPECT_NEAR(m.ref_impulse, 0.7 * 0.2 + 0.1, 1e-6);
+  EXPECT_NEAR(m.mean, 0.7, 1e-9);
+  EXPECT_NEAR(metric_value(m, "mean_error"), 0.0, 1e-9);
+  // A twice-as-large plateau: mean error +100 % (to half a sample at each end of the doubled
+  // span: 0.001 of the 2-unit window).
+  Series twice = p;
+  for (std::size_t i = 0; i < twice.t.size(); ++i)
+    if (twice.t[i] >= 3.0 && twice.t[i] <= 5.0) twice.v[i] *= 2.0;
+  EXPECT_NEAR(compute_metrics(twice, ref, req).mean_error, 1.0, 1e-3);
+}
+
 TEST(Metrics, ArrivalTimeIsTheInterpolatedFirstCrossing) {
   // A ramp starting at t = 0.3 with slope 2: it crosses 0.1 at t = 0.35.
   Series s;

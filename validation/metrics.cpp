@@ -233,6 +233,41 @@ RelativeError relative_error(const Series& s, const Series& ref, Window w, doubl
   return r;
 }
 
+double integral(const Series& s, Window w) {
+  // The finite samples inside w, with the interpolated values at its ends (where defined).
+  double sum = 0.0, t_prev = kNaN, v_prev = kNaN;
+  int n = 0;
+  auto add = [&](double t, double v) {
+    if (!std::isfinite(v)) return;
+    if (n > 0) sum += 0.5 * (v + v_prev) * (t - t_prev);
+    t_prev = t, v_prev = v, ++n;
+  };
+  if (std::isfinite(w.t0)) add(w.t0, interpolate(s, w.t0));
+  for (std::size_t i = 0; i < s.t.size(); ++i)
+    if (s.t[i] > w.t0 && s.t[i] < w.t1) add(s.t[i], s.v[i]);
+  if (std::isfinite(w.t1)) add(w.t1, interpolate(s, w.t1));
+  return n >= 2 ? sum : kNaN;
+}
+
+Peak boxcar_peak(const Series& s, Window w, double tau) {
+  Peak p;
+  if (!(tau > 0.0)) return p;
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    if (!w.contains(s.t[i])) continue;
+    const double lo = s.t[i] - 0.5 * tau, hi = s.t[i] + 0.5 * tau;
+    if (lo < s.t.front() || hi > s.t.back()) continue;  // the average needs the whole width
+    const double v = integral(s, {lo, hi}) / tau;
+    if (std::isfinite(v) && (!std::isfinite(p.value) || v > p.value)) p = {s.t[i], v};
+  }
+  return p;
+}
+
+namespace {
+double relative(double v, double ref) {
+  return std::isfinite(v) && std::isfinite(ref) && ref != 0.0 ? (v - ref) / std::abs(ref) : kNaN;
+}
+}  // namespace
+
 GaugeMetrics compute_metrics(const Series& s, const Series& ref, const MetricRequest& req) {
   GaugeMetrics m;
   m.rms = rms_error(s, ref, req.window);
@@ -249,16 +284,50 @@ GaugeMetrics compute_metrics(const Series& s, const Series& ref, const MetricReq
     m.arrival_error = m.arrival - m.ref_arrival;
   }
   if (req.relative) m.rel = relative_error(s, ref, req.window, req.min_reference);
+  if (req.impulse) {
+    m.impulse = integral(s, req.impulse_window);
+    m.ref_impulse = integral(ref, req.impulse_window);
+    m.impulse_error = relative(m.impulse, m.ref_impulse);
+  }
+  if (req.mean) {
+    const double span = req.mean_window.t1 - req.mean_window.t0;
+    m.mean = integral(s, req.mean_window) / span;
+    m.ref_mean = integral(ref, req.mean_window) / span;
+    m.mean_error = relative(m.mean, m.ref_mean);
+  }
+  if (req.peak && req.filter > 0.0) {
+    m.filtered_peak = boxcar_peak(s, req.peak_window, req.filter);
+    m.ref_filtered_peak = boxcar_peak(ref, req.peak_window, req.filter);
+    m.filtered_peak_error = relative(m.filtered_peak.value, m.ref_filtered_peak.value);
+  }
   return m;
 }
 
 const std::vector<std::string>& metric_names() {
-  static const std::vector<std::string> names = {
-      "samples",        "nrmse",         "rms",
-      "peak",           "ref_peak",      "peak_error",
-      "peak_time",      "ref_peak_time", "peak_time_error",
-      "arrival",        "ref_arrival",   "arrival_error",
-      "mean_rel_error", "max_rel_error", "mean_signed_rel_error"};
+  static const std::vector<std::string> names = {"samples",
+                                                 "nrmse",
+                                                 "rms",
+                                                 "peak",
+                                                 "ref_peak",
+                                                 "peak_error",
+                                                 "peak_time",
+                                                 "ref_peak_time",
+                                                 "peak_time_error",
+                                                 "arrival",
+                                                 "ref_arrival",
+                                                 "arrival_error",
+                                                 "mean_rel_error",
+                                                 "max_rel_error",
+                                                 "mean_signed_rel_error",
+                                                 "impulse",
+                                                 "ref_impulse",
+                                                 "impulse_error",
+                                                 "mean",
+                                                 "ref_mean",
+                                                 "mean_error",
+                                                 "filtered_peak",
+                                                 "ref_filtered_peak",
+                                                 "filtered_peak_error"};
   return names;
 }
 
@@ -278,6 +347,15 @@ double metric_value(const GaugeMetrics& m, const std::string& name) {
   if (name == "mean_rel_error") return m.rel.mean_abs;
   if (name == "max_rel_error") return m.rel.max_abs;
   if (name == "mean_signed_rel_error") return m.rel.mean_signed;
+  if (name == "impulse") return m.impulse;
+  if (name == "ref_impulse") return m.ref_impulse;
+  if (name == "impulse_error") return m.impulse_error;
+  if (name == "mean") return m.mean;
+  if (name == "ref_mean") return m.ref_mean;
+  if (name == "mean_error") return m.mean_error;
+  if (name == "filtered_peak") return m.filtered_peak.value;
+  if (name == "ref_filtered_peak") return m.ref_filtered_peak.value;
+  if (name == "filtered_peak_error") return m.filtered_peak_error;
   std::string known;
   for (const auto& n : metric_names()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown metric '" + name + "' (known: " + known + ")");

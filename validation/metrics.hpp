@@ -102,6 +102,16 @@ struct RelativeError {
 RelativeError relative_error(const Series& s, const Series& ref, Window w,
                              double min_reference = 1e-12);
 
+// Loads (wall pressures and forces), each series on its own samples:
+//   integral(s, w)        trapezoidal integral of the finite samples over [t0, t1], the series
+//                         interpolated at the window's ends (the impulse of a pressure series);
+//   boxcar_peak(s, w, tau) the largest value in w of the moving average over [t - tau/2,
+//                         t + tau/2] (a low-pass filter whose response falls to -3 dB at
+//                         0.443 / tau), evaluated at the series' sample times in w.
+// NaN where the window holds no sample.
+double integral(const Series& s, Window w);
+Peak boxcar_peak(const Series& s, Window w, double tau);
+
 // What to compute for one gauge against one reference.
 struct MetricRequest {
   Window window;                   // for NRMSE and the relative errors
@@ -111,6 +121,11 @@ struct MetricRequest {
   double arrival_threshold = 0.0;  // in the series' (normalised) units
   bool relative = false;           // mean/max relative error
   double min_reference = 1e-12;    // relative errors skip smaller reference values
+  bool impulse = false;            // integral over impulse_window, against the reference's
+  Window impulse_window;
+  bool mean = false;  // time mean over mean_window (integral / duration)
+  Window mean_window;
+  double filter = 0.0;  // > 0: the peak of the boxcar average of this width too
 };
 
 // All metrics for one series against one reference. Unrequested or undefined entries are NaN.
@@ -123,12 +138,22 @@ struct GaugeMetrics {
   double ref_arrival = std::numeric_limits<double>::quiet_NaN();
   double arrival_error = std::numeric_limits<double>::quiet_NaN();  // arrival - ref_arrival
   RelativeError rel;
+  double impulse = std::numeric_limits<double>::quiet_NaN();
+  double ref_impulse = std::numeric_limits<double>::quiet_NaN();
+  double impulse_error = std::numeric_limits<double>::quiet_NaN();  // relative
+  double mean = std::numeric_limits<double>::quiet_NaN();
+  double ref_mean = std::numeric_limits<double>::quiet_NaN();
+  double mean_error = std::numeric_limits<double>::quiet_NaN();           // relative
+  Peak filtered_peak, ref_filtered_peak;                                  // in peak_window
+  double filtered_peak_error = std::numeric_limits<double>::quiet_NaN();  // relative
 };
 GaugeMetrics compute_metrics(const Series& s, const Series& ref, const MetricRequest& req);
 
 // Named access for tables and targets: nrmse, rms, peak, ref_peak, peak_time, ref_peak_time,
 // peak_error, peak_time_error, arrival, ref_arrival, arrival_error, mean_rel_error,
-// max_rel_error, mean_signed_rel_error, samples. Throws std::invalid_argument for other names.
+// max_rel_error, mean_signed_rel_error, samples, impulse, ref_impulse, impulse_error, mean,
+// ref_mean, mean_error, filtered_peak, ref_filtered_peak, filtered_peak_error. Throws
+// std::invalid_argument for other names.
 double metric_value(const GaugeMetrics& m, const std::string& name);
 const std::vector<std::string>& metric_names();
 

@@ -190,9 +190,10 @@ Manifest load_manifest(const std::string& path) {
   for (std::size_t i = 0; i < gauges.size(); ++i) {
     const std::string p = "gauges[" + std::to_string(i) + "]";
     const YAML::Node g = gauges[i];
-    rd.check_keys(g, p,
-                  {"gauge", "normalisation", "reference", "window", "peak_window",
-                   "arrival_threshold", "relative", "min_reference"});
+    rd.check_keys(
+        g, p,
+        {"gauge", "normalisation", "reference", "window", "peak_window", "arrival_threshold",
+         "relative", "min_reference", "impulse_window", "mean_window", "filter"});
     ManifestGauge mg;
     mg.gauge = rd.text(rd.require(g, p, "gauge"), p + ".gauge");
     mg.normalisation = rd.text(rd.require(g, p, "normalisation"), p + ".normalisation");
@@ -225,6 +226,21 @@ Manifest load_manifest(const std::string& path) {
     }
     if (g["min_reference"])
       mg.request.min_reference = rd.number(g["min_reference"], p + ".min_reference");
+    if (g["impulse_window"]) {
+      mg.request.impulse = true;
+      mg.request.impulse_window = rd.window(g["impulse_window"], p + ".impulse_window");
+    }
+    if (g["mean_window"]) {
+      mg.request.mean = true;
+      mg.request.mean_window = rd.window(g["mean_window"], p + ".mean_window");
+    }
+    if (g["filter"]) {
+      mg.request.filter = rd.number(g["filter"], p + ".filter");
+      if (!(mg.request.filter > 0.0))
+        rd.fail(g["filter"], p + ".filter", "expected a width > 0 (normalised time)");
+      if (!g["peak_window"])
+        rd.fail(g["filter"], p + ".filter", "needs peak_window (the filtered peak is found there)");
+    }
     m.gauges.push_back(mg);
   }
 

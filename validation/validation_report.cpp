@@ -253,6 +253,24 @@ std::string markdown_metrics_table(const std::vector<MetricRow>& rows) {
        << format_number(row_value(r, "arrival_error_s")) << " | " << pct(r.m.rel.mean_abs) << " | "
        << pct(r.m.rel.max_abs) << " |\n";
   }
+  // Loads, where a gauge asked for them (impulse, post-impact mean, filtered peak).
+  bool loads = false;
+  for (const auto& r : rows)
+    loads = loads || std::isfinite(r.m.impulse) || std::isfinite(r.m.mean) ||
+            std::isfinite(r.m.filtered_peak.value);
+  if (!loads) return md.str();
+  md << "\n| gauge | run | against | impulse | ref. impulse | impulse err. | mean | ref. mean | "
+        "mean err. | filtered peak | ref. filtered peak | filtered peak err. |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    md << "| " << r.gauge << " | " << r.run << " | " << r.reference << " | "
+       << format_number(r.m.impulse) << " | " << format_number(r.m.ref_impulse) << " | "
+       << pct(r.m.impulse_error) << " | " << format_number(r.m.mean) << " | "
+       << format_number(r.m.ref_mean) << " | " << pct(r.m.mean_error) << " | "
+       << format_number(r.m.filtered_peak.value) << " | "
+       << format_number(r.m.ref_filtered_peak.value) << " | " << pct(r.m.filtered_peak_error)
+       << " |\n";
+  }
   return md.str();
 }
 
