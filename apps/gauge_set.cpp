@@ -58,6 +58,9 @@ std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
         return std::vector<double>(v.data(), v.data() + D);
       }
       case GaugeSpec::Kind::Height:
+        if (g.level == GaugeSpec::Level::Integral)
+          return {
+              water_height_integral(ps, kernel, at, ctx.up_axis, ctx.line_top, 0.5 * p.dp, p.rho0)};
         return {water_height(ps, kernel, at, ctx.up_axis, ctx.line_top, 0.5 * p.dp, p.rho0)};
       case GaugeSpec::Kind::Front: {
         Vec<D> up = Vec<D>::Zero();

@@ -28,7 +28,7 @@ const Names kCommonKeys = {"name", "kind", "every"};
 const std::vector<GaugeKindInfo>& gauge_kinds() {
   static const std::vector<GaugeKindInfo> kinds = {
       {"pressure", GaugeSpec::Kind::Pressure, {"at", "normal", "offset", "size"}},
-      {"height", GaugeSpec::Kind::Height, {"at"}},
+      {"height", GaugeSpec::Kind::Height, {"at", "level"}},
       {"velocity", GaugeSpec::Kind::Velocity, {"at"}},
       {"force", GaugeSpec::Kind::Force, {"body", "moment_about"}},
       {"front", GaugeSpec::Kind::Front, {"band"}},
@@ -95,6 +95,15 @@ GaugeSpec GaugeReader::read_gauge(const YAML::Node& node, const std::string& pat
       read_pressure(node, path, gauge);
       break;
     case GaugeSpec::Kind::Height:  // `at` on the floor: the vertical line starts there
+      gauge.at = vector(require(node, path, "at"), child(path, "at"));
+      if (auto v = find(node, "level")) {
+        const std::string m = text(*v, child(path, "level"));
+        expect(m == "surface" || m == "integral", *v, child(path, "level"),
+               "surface (the first free surface above the start) or integral (the integral of "
+               "the water fraction along the line)");
+        gauge.level = m == "surface" ? GaugeSpec::Level::Surface : GaugeSpec::Level::Integral;
+      }
+      break;
     case GaugeSpec::Kind::Velocity:
       gauge.at = vector(require(node, path, "at"), child(path, "at"));
       break;

@@ -62,7 +62,13 @@ struct GaugeSpec {
   std::string body;                             // force: the boundary body name
   std::optional<Eigen::Vector3d> moment_about;  // force: moment reference point (default origin)
   std::optional<double> band;                   // front: band height above the floor (default 2h)
-  double every = 0.0;                           // sampling interval [s]; 0: output.gauge_every
+  // height: which water level. Surface: the first free surface above the start of the line
+  // (DualSPHysics' GaugeSwl; a splash above a dry gap is not counted). Integral: the start plus
+  // the integral of the water fraction along the line (interFoam's usual definition; splashes
+  // and detached layers count). Both solvers compute both.
+  enum class Level { Surface, Integral };
+  Level level = Level::Surface;
+  double every = 0.0;  // sampling interval [s]; 0: output.gauge_every
   int line = 0;
 };
 

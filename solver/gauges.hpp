@@ -41,6 +41,42 @@ void for_fluid_near(const ParticleSet<D>& ps, const Vec<D>& x, double support, F
   }
 }
 
+// The particles with keep(j) whose horizontal distance to the vertical line through x_base is
+// below the support (the candidates of a water-level line), after checking its arguments.
+template <int D, class Keep>
+std::vector<std::uint32_t> line_candidates(const ParticleSet<D>& ps, const Vec<D>& x_base, int up,
+                                           double z_top, double dz, double support, Keep&& keep) {
+  if (up < 0 || up >= D) throw std::invalid_argument("water_height: up axis out of range");
+  if (!(dz > 0.0)) throw std::invalid_argument("water_height: dz must be positive");
+  if (!(z_top > x_base[up]))
+    throw std::invalid_argument("water_height: z_top must lie above the start of the line");
+  std::vector<std::uint32_t> near;
+  for (std::size_t j = 0; j < ps.size(); ++j) {
+    if (!keep(j)) continue;
+    double h2 = 0.0;
+    for (int d = 0; d < D; ++d) {
+      if (d == up) continue;
+      const double e = ps.pos[j][d] - x_base[d];
+      h2 += e * e;
+    }
+    if (h2 < support * support) near.push_back(static_cast<std::uint32_t>(j));
+  }
+  return near;
+}
+
+// sum_j m_j W(x - x_j) over the candidates.
+template <int D, class K>
+double mass_sum(const ParticleSet<D>& ps, const K& kernel, const std::vector<std::uint32_t>& near,
+                const Vec<D>& x) {
+  const double s2 = kernel.support() * kernel.support();
+  double sum = 0.0;
+  for (const std::uint32_t j : near) {
+    const double r2 = (x - ps.pos[j]).squaredNorm();
+    if (r2 < s2) sum += ps.mass[j] * kernel.w(std::sqrt(r2));
+  }
+  return sum;
+}
+
 }  // namespace gauge_detail
 
 // Pressure at point x: the Shepard-normalised kernel interpolation over fluid particles
@@ -161,36 +197,16 @@ Vec<D> probe_velocity(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x
 template <int D, class K>
 double water_height(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_base, int up,
                     double z_top, double dz, double rho0, double fraction = 0.5) {
-  if (up < 0 || up >= D) throw std::invalid_argument("water_height: up axis out of range");
-  if (!(dz > 0.0)) throw std::invalid_argument("water_height: dz must be positive");
-  if (!(z_top > x_base[up]))
-    throw std::invalid_argument("water_height: z_top must lie above the start of the line");
-  const double support = kernel.support(), s2 = support * support;
+  const double support = kernel.support();
   const double threshold = fraction * rho0;
   const double z0 = x_base[up];
-
-  // Prefilter: fluid particles within one support of the line, horizontally.
-  std::vector<std::uint32_t> near;
-  for (std::size_t j = 0; j < ps.size(); ++j) {
-    if (ps.role[j] != Role::Fluid) continue;
-    double h2 = 0.0;
-    for (int d = 0; d < D; ++d) {
-      if (d == up) continue;
-      const double e = ps.pos[j][d] - x_base[d];
-      h2 += e * e;
-    }
-    if (h2 < s2) near.push_back(static_cast<std::uint32_t>(j));
-  }
-
+  // Fluid particles within one support of the line, horizontally.
+  const std::vector<std::uint32_t> near = gauge_detail::line_candidates(
+      ps, x_base, up, z_top, dz, support, [&](std::size_t j) { return ps.role[j] == Role::Fluid; });
   auto density_at = [&](double z) {
     Vec<D> x = x_base;
     x[up] = z;
-    double sum = 0.0;
-    for (const std::uint32_t j : near) {
-      const double r2 = (x - ps.pos[j]).squaredNorm();
-      if (r2 < s2) sum += ps.mass[j] * kernel.w(std::sqrt(r2));
-    }
-    return sum;
+    return gauge_detail::mass_sum(ps, kernel, near, x);
   };
 
   bool wet = false;
@@ -210,6 +226,35 @@ double water_height(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_b
     z_prev = z;
     rho_prev = rho;
   }
+}
+
+// Water level as the integral of the water fraction along the vertical line through x_base,
+// from z0 = x_base[up] to z_top: z0 + int min(1, rho_k(z) / rho0) dz (trapezoid, step dz),
+// rho_k the kernel sum of the mass of the fluid and of the wall particles below z0 (the bed,
+// which completes the kernel at the bottom of the line; walls beside the line are not counted).
+// interFoam's usual level, int alpha dz: a splash or a layer above a dry gap counts, unlike
+// water_height's first free surface.
+template <int D, class K>
+double water_height_integral(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_base,
+                             int up, double z_top, double dz, double rho0) {
+  const double z0 = x_base[up];
+  const std::vector<std::uint32_t> near = gauge_detail::line_candidates(
+      ps, x_base, up, z_top, dz, kernel.support(),
+      [&](std::size_t j) { return ps.role[j] == Role::Fluid || ps.pos[j][up] < z0; });
+  auto fraction_at = [&](double z) {
+    Vec<D> x = x_base;
+    x[up] = z;
+    return std::min(1.0, gauge_detail::mass_sum(ps, kernel, near, x) / rho0);
+  };
+  const long n = std::max(1L, static_cast<long>(std::ceil((z_top - z0) / dz)));
+  const double step = (z_top - z0) / static_cast<double>(n);
+  double sum = 0.0, prev = fraction_at(z0);
+  for (long k = 1; k <= n; ++k) {
+    const double f = fraction_at(z0 + static_cast<double>(k) * step);
+    sum += 0.5 * (prev + f) * step;
+    prev = f;
+  }
+  return z0 + sum;
 }
 
 // Fluid load on a boundary body: force and moment in 3 components in both 2D and 3D (2D: only

@@ -1362,6 +1362,23 @@ TEST(CaseFileGaugeErrors, DuplicateName) {
                               10, {"gauges[2].name", "duplicate gauge name 'P1'", "line 8"}));
 }
 
+TEST(CaseFileGauges, HeightLevelDefinition) {
+  const CaseSpec spec =
+      parse_case_text(with_gauges("  - {name: H1, kind: height, at: [0.1, 0]}\n"
+                                  "  - {name: H2, kind: height, at: [0.1, 0], level: integral}\n"
+                                  "  - {name: H3, kind: height, at: [0.1, 0], level: surface}\n"),
+                      kLabel);
+  EXPECT_EQ(spec.gauges[0].level, GaugeSpec::Level::Surface);
+  EXPECT_EQ(spec.gauges[1].level, GaugeSpec::Level::Integral);
+  EXPECT_EQ(spec.gauges[2].level, GaugeSpec::Level::Surface);
+  EXPECT_TRUE(
+      ThrowsCaseError(with_gauges("  - {name: H1, kind: height, at: [0.1, 0], level: mid}\n"), 8,
+                      {"gauges[0].level", "surface (the first free surface"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      with_gauges("  - {name: P1, kind: pressure, at: [0.1, 0.1], level: integral}\n"), 8,
+      {"level"}));
+}
+
 TEST(CaseFileGaugeErrors, MissingOrUnknownKind) {
   EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: P1, at: [0.1, 0.1]}\n"), 8,
                               {"missing required key 'gauges[0].kind'"}));

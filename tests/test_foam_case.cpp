@@ -245,6 +245,14 @@ TEST(FoamCase, FrontFromARowOfCells) {
   const double nan = std::nan("");
   // Wet run from the wall, then a partly filled cell.
   EXPECT_NEAR(foam::front_from_row({1, 1, 0.9, 0.3, 0, 0}, 0.0, 0.1), 0.33, 1e-12);
+  // Water levels, both definitions, on a column of 0.3 with a detached layer above a dry gap:
+  // the surface level is where alpha crosses 0.5 (0.25 + 0.1 * 0.4 / 0.8), the integral adds
+  // the layer.
+  const std::vector<double> col = {1, 1, 0.9, 0.1, 0, 0, 1, 1, 0, 0};
+  EXPECT_NEAR(foam::level_surface(col, 0.0, 0.1), 0.25, 1e-12);
+  EXPECT_NEAR(foam::level_integral(col, 0.0, 0.1), 0.1 * (0.5 + 1 + 0.9 + 0.1 + 1 + 1), 1e-12);
+  EXPECT_NEAR(foam::level_surface({0, 0, 0, 0, 1, 1}, 0.5, 0.1), 0.5, 1e-12);  // dry bed
+  EXPECT_NEAR(foam::level_surface({1, 1, 1}, 0.0, 0.1), 0.2, 1e-12);           // full line
   // A solid gap (NaN) is crossed when the water continues behind it.
   EXPECT_NEAR(foam::front_from_row({1, 1, nan, nan, 1, 0.2}, 0.0, 0.1), 0.52, 1e-12);
   // Stopped at the gap.

@@ -118,6 +118,40 @@ ParticleSet<2> block2(double w, double hgt, double dp, double rho) {
   return ps;
 }
 
+// `level: integral`: on a block standing on a 3-layer bed of wall particles, the integral of
+// the water fraction is the block's height (the bed completes the kernel at the bottom, the
+// surface's smooth fall integrates to its middle); a detached layer of 3 rows above a dry gap
+// adds its thickness to the integral but not to the first-surface level.
+TEST(WaterHeight, IntegralLevelCountsDetachedWaterAndTheSurfaceLevelDoesNot) {
+  const double dp = 0.01, rho0 = 1000.0, hgt = 0.2;
+  ParticleSet<2> ps = block2(0.4, hgt, dp, rho0);
+  for (int j = 1; j <= 3; ++j)
+    for (int i = -3; i < 43; ++i)
+      ps.add(Vec<2>((i + 0.5) * dp, (0.5 - j) * dp), Vec<2>::Zero(), rho0, rho0 * dp * dp,
+             Role::FixedWall, 1);
+  const WendlandC2<2> k(std::sqrt(2.0) * dp);
+  const double full = water_height_integral(ps, k, Vec<2>(0.2, 0.0), 1, 0.5, 0.5 * dp, rho0);
+  EXPECT_NEAR(full, hgt, 0.05 * dp);
+  EXPECT_NEAR(water_height(ps, k, Vec<2>(0.2, 0.0), 1, 0.5, 0.5 * dp, rho0), hgt, 0.1 * dp);
+  for (int j = 0; j < 3; ++j)  // 3 rows from y = 0.3
+    for (int i = 0; i < 40; ++i)
+      ps.add(Vec<2>((i + 0.5) * dp, 0.3 + (j + 0.5) * dp), Vec<2>::Zero(), rho0, rho0 * dp * dp,
+             Role::Fluid, 0);
+  const double with_layer = water_height_integral(ps, k, Vec<2>(0.2, 0.0), 1, 0.5, 0.5 * dp, rho0);
+  std::cout << "  integral level: block " << full << " m, with a 3-row layer above a gap "
+            << with_layer << " m\n";
+  EXPECT_NEAR(with_layer, hgt + 3 * dp, 0.1 * dp);
+  EXPECT_NEAR(water_height(ps, k, Vec<2>(0.2, 0.0), 1, 0.5, 0.5 * dp, rho0), hgt, 0.1 * dp);
+  // A side wall beside the line is not water.
+  ParticleSet<2> side = block2(0.4, hgt, dp, rho0);
+  for (int j = 0; j < 50; ++j)
+    side.add(Vec<2>(-0.5 * dp, (j + 0.5) * dp), Vec<2>::Zero(), rho0, rho0 * dp * dp,
+             Role::FixedWall, 1);
+  const double near_wall =
+      water_height_integral(side, k, Vec<2>(0.005, 0.1), 1, 0.5, 0.5 * dp, rho0);
+  EXPECT_LT(near_wall, hgt + 0.5 * dp);
+}
+
 TEST(WaterHeight, SingleParticleCrossingIsTheLinearInterpolation) {
   // One particle at the origin: rho_k(z) = m W(z) on the line through it. With dz = h/4 the
   // crossing of rho0/2 falls between two samples; check the interpolation formula exactly.

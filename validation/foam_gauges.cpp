@@ -109,8 +109,9 @@ const char* kind_comment(GaugeSpec::Kind k) {
       return "pressure probes: interFoam static pressure p [Pa] of the cell holding the point; "
              "wall probes sample the first cell centre off the wall along the normal";
     case GaugeSpec::Kind::Height:
-      return "water height: start of the line + integral of alpha.water along the vertical "
-             "line to the tank top [m]";
+      return "water height: level: surface (default), the first height above the start of the "
+             "line where alpha.water falls below 0.5 (interpolated); level: integral, the start "
+             "+ the integral of alpha.water along the line to the tank top [m]";
     case GaugeSpec::Kind::Velocity:
       return "velocity probes: interFoam U [m/s] of the cell holding the point";
     case GaugeSpec::Kind::Force:
@@ -133,12 +134,32 @@ double height_from_set(const Probe& pr, int up, const std::vector<std::array<dou
     const long k = std::lround((p[up] - z0) / ds);
     if (k >= 0 && k < n) alpha[k] = std::clamp(p[3], 0.0, 1.0);
   }
-  double sum = 0.0;
-  for (int k = 0; k < n; ++k) sum += (k == 0 || k == n - 1 ? 0.5 : 1.0) * alpha[k];
-  return z0 + sum * ds;
+  return pr.spec.level == GaugeSpec::Level::Integral ? foam::level_integral(alpha, z0, ds)
+                                                     : foam::level_surface(alpha, z0, ds);
 }
 
 }  // namespace
+
+double foam::level_integral(const std::vector<double>& alpha, double z0, double ds) {
+  const std::size_t n = alpha.size();
+  double sum = 0.0;
+  for (std::size_t k = 0; k < n; ++k) sum += (k == 0 || k + 1 == n ? 0.5 : 1.0) * alpha[k];
+  return z0 + sum * ds;
+}
+
+// The first free surface above the start: from the first wet sample (alpha >= 0.5, one of the
+// three lowest) up to where alpha first falls below 0.5, linearly interpolated. A dry
+// start (a dry bed) reads z0.
+double foam::level_surface(const std::vector<double>& alpha, double z0, double ds) {
+  const std::size_t n = alpha.size();
+  std::size_t k = 0;
+  while (k < n && !(alpha[k] >= 0.5)) ++k;
+  if (k == n || k > 2) return z0;  // dry at the bottom of the line
+  for (; k + 1 < n; ++k)
+    if (alpha[k + 1] < 0.5)
+      return z0 + ds * (static_cast<double>(k) + (alpha[k] - 0.5) / (alpha[k] - alpha[k + 1]));
+  return z0 + ds * static_cast<double>(n - 1);
+}
 
 double foam::front_from_row(const std::vector<double>& alpha, double x0, double dx) {
   const int n = static_cast<int>(alpha.size());

@@ -95,6 +95,12 @@ std::string foam_word(const std::string& s);
 // run of wet cells is followed, crossing solid gaps; the front is the far face of its last cell
 // plus the water fraction of the next cell. NaN if no cell is wet.
 double front_from_row(const std::vector<double>& alpha, double x0, double dx);
+// Water level from alpha.water sampled at z0 + k ds along a vertical line (height gauges):
+// the integral z0 + int alpha dz (trapezoid; `level: integral`), or the first free surface
+// above the start, where alpha first falls below 0.5 (interpolated; `level: surface`; z0 if
+// the bottom of the line is dry).
+double level_integral(const std::vector<double>& alpha, double z0, double ds);
+double level_surface(const std::vector<double>& alpha, double z0, double ds);
 
 // What an interFoam log says about the run: steps, last time and step, and the problem if any
 // (empty when it finished cleanly). `status` is the exit status, `stopped` the reason the run
