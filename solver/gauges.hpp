@@ -41,15 +41,20 @@ void for_fluid_near(const ParticleSet<D>& ps, const Vec<D>& x, double support, F
   }
 }
 
-// The particles with keep(j) whose horizontal distance to the vertical line through x_base is
-// below the support (the candidates of a water-level line), after checking its arguments.
-template <int D, class Keep>
-std::vector<std::uint32_t> line_candidates(const ParticleSet<D>& ps, const Vec<D>& x_base, int up,
-                                           double z_top, double dz, double support, Keep&& keep) {
+// The arguments of a water-level line, checked before anything indexes x_base with `up`.
+template <int D>
+void check_line(const Vec<D>& x_base, int up, double z_top, double dz) {
   if (up < 0 || up >= D) throw std::invalid_argument("water_height: up axis out of range");
   if (!(dz > 0.0)) throw std::invalid_argument("water_height: dz must be positive");
   if (!(z_top > x_base[up]))
     throw std::invalid_argument("water_height: z_top must lie above the start of the line");
+}
+
+// The particles with keep(j) whose horizontal distance to the vertical line through x_base is
+// below the support (the candidates of a water-level line; check_line first).
+template <int D, class Keep>
+std::vector<std::uint32_t> line_candidates(const ParticleSet<D>& ps, const Vec<D>& x_base, int up,
+                                           double support, Keep&& keep) {
   std::vector<std::uint32_t> near;
   for (std::size_t j = 0; j < ps.size(); ++j) {
     if (!keep(j)) continue;
@@ -197,12 +202,13 @@ Vec<D> probe_velocity(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x
 template <int D, class K>
 double water_height(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_base, int up,
                     double z_top, double dz, double rho0, double fraction = 0.5) {
+  gauge_detail::check_line(x_base, up, z_top, dz);
   const double support = kernel.support();
   const double threshold = fraction * rho0;
   const double z0 = x_base[up];
   // Fluid particles within one support of the line, horizontally.
   const std::vector<std::uint32_t> near = gauge_detail::line_candidates(
-      ps, x_base, up, z_top, dz, support, [&](std::size_t j) { return ps.role[j] == Role::Fluid; });
+      ps, x_base, up, support, [&](std::size_t j) { return ps.role[j] == Role::Fluid; });
   auto density_at = [&](double z) {
     Vec<D> x = x_base;
     x[up] = z;
@@ -237,9 +243,10 @@ double water_height(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_b
 template <int D, class K>
 double water_height_integral(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_base,
                              int up, double z_top, double dz, double rho0) {
+  gauge_detail::check_line(x_base, up, z_top, dz);
   const double z0 = x_base[up];
   const std::vector<std::uint32_t> near = gauge_detail::line_candidates(
-      ps, x_base, up, z_top, dz, kernel.support(),
+      ps, x_base, up, kernel.support(),
       [&](std::size_t j) { return ps.role[j] == Role::Fluid || ps.pos[j][up] < z0; });
   auto fraction_at = [&](double z) {
     Vec<D> x = x_base;
