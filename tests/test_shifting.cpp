@@ -173,7 +173,6 @@ TEST(ShiftingOperator, ParticlesAtRestAreNotShifted) {
   ParticleSet<2> ps = block(20, 20, 0.2, 0.0);
   f.grid.sort(ps);
   ShiftingWork<2> work;
-  const auto& shift = work.shift;
   const ShiftingStats st = compute_shifting<2>(ps, f.grid, f.kernel, f.params, kDp, 1e-3, work);
   EXPECT_EQ(st.shifted, 0u);  // Skillen et al.'s D = A h |v| dt vanishes
 }

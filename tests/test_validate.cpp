@@ -243,6 +243,27 @@ TEST(Validate, ManifestErrorsNameFileLineAndField) {
               std::string::npos)
         << e.what();
   }
+  // Load metrics: a filter needs a peak window to look in, and a positive width.
+  for (const auto& [gauge, expect] : std::vector<std::pair<std::string, std::string>>{
+           {"{gauge: g, normalisation: n, filter: 0.01}", "gauges[0].filter: needs peak_window"},
+           {"{gauge: g, normalisation: n, peak_window: [0, 1], filter: 0}",
+            "gauges[0].filter: expected a width > 0"},
+           {"{gauge: g, normalisation: n, impulse_window: [1, 0]}",
+            "gauges[0].impulse_window: expected t1 > t0"}}) {
+    write(root / "bad" / "validation.yaml",
+          "case: ../validation/tiny/../../cases/tiny.yaml\n"
+          "normalisation:\n  n: {time_scale: 1, value_scale: 1}\n"
+          "references:\n  - {name: e, file: ref.csv}\n"
+          "gauges:\n  - " +
+              gauge + "\n");
+    try {
+      load_manifest((root / "bad" / "validation.yaml").string());
+      ADD_FAILURE() << gauge << " was accepted";
+    } catch (const ManifestError& e) {
+      EXPECT_NE(std::string(e.what()).find("validation.yaml:7: " + expect), std::string::npos)
+          << e.what();
+    }
+  }
   write(root / "bad" / "validation.yaml",
         "case: ../cases/tiny.yaml\nnormalisation:\n  n: {time_scale: 1, value_scale: 1}\n"
         "references:\n  - {name: e, file: missing.csv}\ngauges: []\n");
