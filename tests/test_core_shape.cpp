@@ -222,7 +222,8 @@ TEST(Layout, SolverAndBcIncludeNothingAboveThem) {
     EXPECT_GT(files, 3) << folder;
   };
   check("solver", {"solver/"});
-  check("bc", {"solver/", "bc/"});
+  check("bc", {"solver/", "bc/", "waves/"});
+  check("waves", {"waves/"});
   // The intrinsics live in one file of the solver.
   for (const auto& e : fs::recursive_directory_iterator(src / "solver")) {
     if (!e.is_regular_file()) continue;
