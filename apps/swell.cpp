@@ -17,6 +17,7 @@
 #include "apps/probe_command.hpp"
 #include "apps/stop_signals.hpp"
 #include "apps/validate_command.hpp"
+#include "apps/waves_command.hpp"
 #include "io/case_file.hpp"
 #include "io/hdf5_file.hpp"
 #include "solver/time/simulation.hpp"
@@ -182,6 +183,22 @@ int main(int argc, char** argv) {
       ->needs(single);
   bench->add_option("-t", bench_single.threads, "with --single: threads")->needs(single);
 
+  swell::WavesOptions waves_opt;
+  auto* waves = app.add_subcommand(
+      "waves", "regular-wave theory and paddle stroke: swell waves H T d [--paddle flap --hinge l]");
+  waves->require_subcommand(0, 1);
+  auto* waves_h = waves->add_option("H", waves_opt.height, "wave height [m]")->check(kPositive);
+  waves->add_option("T", waves_opt.period, "wave period [s]")->check(kPositive);
+  waves->add_option("d", waves_opt.depth, "still-water depth [m]")->check(kPositive);
+  waves->add_option("--paddle", waves_opt.paddle, "piston (default) | flap")
+      ->check(CLI::IsMember({"piston", "flap"}));
+  waves->add_option("--hinge", waves_opt.hinge, "flap: hinge height above the bed [m] (< 0: below)");
+  waves->add_option("--order", waves_opt.order, "generation order 1 | 2 (default 1)")
+      ->check(CLI::IsMember({1, 2}));
+  waves->add_option("--dp", waves_opt.dp, "particle spacing [m]: resolution checks")
+      ->check(kPositive);
+  waves->add_option("-g", waves_opt.g, "gravity [m/s^2] (default 9.81)")->check(kPositive);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -254,6 +271,10 @@ int main(int argc, char** argv) {
       if (!cmp_peak_window.empty()) cmp.peak_window = window(cmp_peak_window, "--peak-window");
       if (*cmp_arrival_opt) cmp.arrival_threshold = cmp_arrival;
       swell::run_compare(cmp, std::cerr);
+    } else if (*waves && waves->get_subcommands().empty()) {
+      if (waves_h->count() == 0 || waves_opt.period <= 0.0 || waves_opt.depth <= 0.0)
+        throw std::invalid_argument("waves: expected H T d (height [m], period [s], depth [m])");
+      swell::run_waves(waves_opt, std::cout);
     } else if (*validate) {
       if (!val_res.empty()) val.resolutions = swell::parse_number_list(val_res, "--resolution");
       if (!val_cells.empty()) val.cell_sizes = swell::parse_number_list(val_cells, "--cell-size");

@@ -146,13 +146,21 @@ MotionLaw::MotionLaw(const MotionSpec& spec) : spec_(spec) {
   if (!(spec_.ramp >= 0.0)) {
     throw std::invalid_argument("motion: ramp must be >= 0 s, got " + format_number(spec_.ramp));
   }
-  const bool rotates = spec_.type == Type::Rotation ||
+  const bool flap = spec_.type == Type::Wave && spec_.paddle &&
+                    spec_.paddle->paddle.type == waves::PaddleGeometry::Type::Flap;
+  const bool rotates = spec_.type == Type::Rotation || flap ||
                        (spec_.type == Type::File && spec_.quantity == MotionSpec::Quantity::Angle);
   const bool oscillates =
       spec_.type == Type::Sinusoidal || (spec_.type == Type::Rotation && !spec_.rate);
-  if (spec_.type == Type::Sinusoidal ||
+  if (spec_.type == Type::Sinusoidal || spec_.type == Type::Wave ||
       (spec_.type == Type::File && spec_.quantity == MotionSpec::Quantity::Displacement)) {
     check_unit(spec_.direction, "direction");
+  }
+  if (spec_.type == Type::Wave) {
+    if (!spec_.paddle) throw std::invalid_argument("motion: a wave paddle needs its signal");
+    if (flap && !(spec_.lever > 0.0)) {
+      throw std::invalid_argument("motion: a flap needs its hinge below the still-water level");
+    }
   }
   if (rotates) check_unit(spec_.axis, "rotation axis");
   if (oscillates) {
@@ -201,6 +209,8 @@ double MotionLaw::cycle_time() const {
   switch (spec_.type) {
     case MotionSpec::Type::Sinusoidal:
       return spec_.period;
+    case MotionSpec::Type::Wave:
+      return spec_.paddle->shortest_period();
     case MotionSpec::Type::Rotation:
       if (!spec_.rate) return spec_.period;
       return *spec_.rate != 0.0 ? 2.0 * std::numbers::pi / std::abs(*spec_.rate) : 0.0;
@@ -272,6 +282,20 @@ void MotionLaw::law_at(double tau, RigidPose& p) const {
         p.omega = rate;
       } else {
         p.d = value * spec_.direction;
+        p.dv = rate * spec_.direction;
+      }
+      break;
+    }
+    case MotionSpec::Type::Wave: {
+      const double f = spec_.paddle->displacement(tau), df = spec_.paddle->velocity(tau);
+      const double x = ramp.r * f, rate = ramp.dr * f + ramp.r * df;
+      if (spec_.paddle->paddle.type == waves::PaddleGeometry::Type::Flap) {
+        // theta = atan(X / l): d theta / dt = l X' / (l^2 + X^2).
+        const double l = spec_.lever;
+        p.theta = std::atan2(x, l);
+        p.omega = l * rate / (l * l + x * x);
+      } else {
+        p.d = x * spec_.direction;
         p.dv = rate * spec_.direction;
       }
       break;

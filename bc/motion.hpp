@@ -29,15 +29,18 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "waves/wavemaker.hpp"
+
 namespace swell {
 
 struct MotionSpec {
-  enum class Type { None, Linear, Sinusoidal, Rotation, File };
+  enum class Type { None, Linear, Sinusoidal, Rotation, File, Wave };
   Type type = Type::None;
 
   // Linear translation: velocity [m/s] and constant acceleration [m/s^2].
@@ -64,6 +67,17 @@ struct MotionSpec {
   std::string file{};                  // where the series came from, for messages
   std::vector<double> series_t{};      // local time tau [s], strictly increasing, >= 2 entries
   std::vector<double> series_value{};  // SI: m or rad
+
+  // Wave: a wavemaker paddle driven by a signal X(tau) (waves/wavemaker.hpp), the displacement
+  // of the paddle's still-water-level point along `direction`. A piston translates by X; a flap
+  // turns about `axis` through `centre` (its hinge) by theta = atan(X / lever), lever = the
+  // height of the still-water level above the hinge, so its SWL point moves by exactly X
+  // horizontally (the axis is set to up x direction, so a positive theta moves it along
+  // `direction`). Ramped like File. `wave_label` describes the wave for the run header.
+  std::shared_ptr<const waves::PaddleSignal> paddle{};
+  double lever = 0.0;  // [m], flap
+  std::string wave_label{};
+  std::vector<std::string> wave_notes{};  // validity warnings (waves/theory.hpp)
 
   double start = 0.0;                                     // [s]
   double stop = std::numeric_limits<double>::infinity();  // [s], > start

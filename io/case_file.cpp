@@ -242,6 +242,9 @@ class CaseReader : private NodeReader {
       if (chosen == name_of(v)) return v;
     return values[0];  // not reached: choice() accepts only the names of `values`
   }
+
+  double g_ = 9.81;  // |gravity|, set after the physics section (wavemakers' dispersion)
+  double dp_ = 0.0;  // the particle spacing (wavemakers' resolution checks)
 };
 
 CaseSpec CaseReader::read(const YAML::Node& root) {
@@ -264,6 +267,8 @@ CaseSpec CaseReader::read(const YAML::Node& root) {
     expect(is_safe_name(spec.name), *node, "name", safe_name_rule());
   }
   if (auto node = find(root, "physics")) read_physics(*node, "physics", spec);
+  g_ = spec.gravity.norm();
+  dp_ = spec.dp;
   read_time(require(root, "", "time"), "time", spec);
   if (auto node = find(root, "domain")) read_domain(*node, "domain", spec);
   spec.bodies = read_bodies(require(root, "", "bodies"), "bodies");
@@ -643,7 +648,7 @@ void CaseReader::read_wall_options(const YAML::Node& node, const std::string& pa
   if (auto v = find(node, "open")) body.open = read_open_faces(*v, child(path, "open"));
   if (auto v = find(node, "motion"))
     body.motion = read_motion(*this, *v, child(path, "motion"),
-                              std::filesystem::path(file_).parent_path().string());
+                              std::filesystem::path(file_).parent_path().string(), g_, dp_);
 }
 
 std::vector<std::string> CaseReader::read_open_faces(const YAML::Node& node,

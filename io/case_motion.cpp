@@ -7,15 +7,22 @@
 //   motion: {type: rotation, centre: [..], amplitude: deg, period: P, phase: deg, axis: [..]}
 //   motion: {type: file, file: f.csv, quantity: displacement, direction: [..]}
 //   motion: {type: file, file: f.csv, quantity: angle, centre: [..], axis: [..]}
+//   motion: {type: wave, paddle: piston|flap, wave: regular|solitary|focused|irregular,
+//            depth: d, direction: [..], ...}          the wave's keys: read_wave below
 // Every type also takes start, stop and ramp (seconds). Angles, phases and rates are in degrees
 // in the file and radians in MotionSpec. The axis is always 3 numbers; in 2D it must be z. As in
 // the gauge reader, a key that belongs to another type is reported as such.
 #include "io/case_motion.hpp"
 
+#include "waves/spectrum.hpp"
+#include "waves/theory.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <sstream>
+#include <utility>
 #include <span>
 #include <stdexcept>
 #include <string_view>
@@ -43,6 +50,11 @@ const std::vector<MotionTypeInfo>& motion_types() {
        MotionSpec::Type::Rotation,
        {"centre", "axis", "rate", "amplitude", "period", "phase"}},
       {"file", MotionSpec::Type::File, {"file", "quantity", "direction", "centre", "axis"}},
+      {"wave",
+       MotionSpec::Type::Wave,
+       {"paddle", "wave", "depth", "direction", "hinge", "bed", "height", "period", "order",
+        "phase", "hs", "tp", "gamma", "spectrum", "components", "seed", "f_min", "f_max",
+        "amplitude", "focus_distance", "focus_time"}},
   };
   return types;
 }
@@ -51,8 +63,8 @@ const char* const kExample = "a map such as {type: sinusoidal, amplitude: 0.05, 
 
 class MotionReader : private NodeReader {
  public:
-  MotionReader(const NodeReader& base, std::string case_dir)
-      : NodeReader(base), case_dir_(std::move(case_dir)) {}
+  MotionReader(const NodeReader& base, std::string case_dir, double g, double dp)
+      : NodeReader(base), case_dir_(std::move(case_dir)), g_(g), dp_(dp) {}
 
   MotionSpec read(const YAML::Node& node, const std::string& path) const;
 
@@ -66,11 +78,14 @@ class MotionReader : private NodeReader {
                      double amplitude_unit) const;
   void read_rotation(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
   void read_file(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
+  void read_wave(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
   void read_pivot(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
   void read_direction(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
   Eigen::Vector3d unit(const YAML::Node& node, const std::string& path, int count) const;
 
   std::string case_dir_;
+  double g_ = 9.81;
+  double dp_ = 0.0;
 };
 
 MotionSpec MotionReader::read(const YAML::Node& node, const std::string& path) const {
@@ -96,6 +111,9 @@ MotionSpec MotionReader::read(const YAML::Node& node, const std::string& path) c
       break;
     case MotionSpec::Type::File:
       read_file(node, path, spec);
+      break;
+    case MotionSpec::Type::Wave:
+      read_wave(node, path, spec);
       break;
   }
   try {
@@ -239,6 +257,174 @@ void MotionReader::read_file(const YAML::Node& node, const std::string& path,
   }
 }
 
+// A wavemaker: the paddle, the wave and its parameters (SI; phase in degrees).
+//   every wave:  paddle (piston | flap, default piston), wave (regular | solitary | focused |
+//                irregular), depth (still-water depth at the paddle, m), direction (of the
+//                waves, default +x); flap: hinge (the hinge point) and bed (vertical coordinate
+//                of the bed, default 0; the vertical is the last axis)
+//   regular:     height, period, order (1 | 2, default 1), phase (deg, default 0)
+//   solitary:    height (piston only; no ramp)
+//   irregular:   hs, tp, spectrum (jonswap | pm, default jonswap), gamma (3.3), components
+//                (200), seed (1), f_min, f_max (Hz; default 0.5/tp and 3/tp)
+//   focused:     amplitude (linear crest at the focus), focus_distance (from the paddle, m),
+//                focus_time (s after the motion's start), tp, spectrum, gamma, components (60),
+//                f_min, f_max
+// The wave's time is the motion's local time (from `start`). Unless `ramp` is given, the
+// paddle ramps up over 2 periods (T or Tp); a solitary wave starts from rest and takes none.
+void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
+                             MotionSpec& spec) const {
+  using waves::PaddleGeometry;
+  const Names kinds = {"regular", "solitary", "focused", "irregular"};
+  const std::string kind = choice(require(node, path, "wave"), child(path, "wave"), kinds);
+  const std::vector<std::pair<std::string, Names>> own = {
+      {"regular", {"height", "period", "order", "phase"}},
+      {"solitary", {"height"}},
+      {"irregular", {"hs", "tp", "spectrum", "gamma", "components", "seed", "f_min", "f_max"}},
+      {"focused",
+       {"amplitude", "focus_distance", "focus_time", "tp", "spectrum", "gamma", "components",
+        "f_min", "f_max"}}};
+  Names allowed;
+  for (const auto& [k, keys] : own)
+    if (k == kind) allowed = keys;
+  for (const auto& entry : node) {
+    const std::string key = entry.first.Scalar();
+    if (contains(allowed, key)) continue;
+    Names owners;
+    for (const auto& [k, keys] : own)
+      if (contains(keys, key)) owners.push_back(k);
+    if (owners.empty()) continue;
+    fail(entry.first, child(path, key) + ": a " + kind + " wave takes no '" + key +
+                          "' (it belongs to wave: " + join(owners) + "); a " + kind +
+                          " wave takes " + join(allowed));
+  }
+  const auto positive = [](double v) { return v > 0.0; };
+  const auto number_pos = [&](const char* key) {
+    return number_if(require(node, path, key), child(path, key), positive, "a number > 0");
+  };
+
+  PaddleGeometry paddle;
+  if (auto v = find(node, "paddle")) {
+    paddle.type = choice(*v, child(path, "paddle"), {"piston", "flap"}) == "flap"
+                      ? PaddleGeometry::Type::Flap
+                      : PaddleGeometry::Type::Piston;
+  }
+  const bool flap = paddle.type == PaddleGeometry::Type::Flap;
+  paddle.depth = number_pos("depth");
+  read_direction(node, path, spec);
+  const int up = dim() - 1;  // the vertical axis
+  if (std::abs(spec.direction[up]) > 1e-12) {
+    fail(*find(node, "direction"), child(path, "direction") +
+                                       ": waves travel horizontally; the direction must have no "
+                                       "vertical (last) component");
+  }
+  if (flap) {
+    spec.centre = vector(require(node, path, "hinge"), child(path, "hinge"));
+    double bed = 0.0;
+    if (auto v = find(node, "bed")) bed = number(*v, child(path, "bed"));
+    paddle.hinge_height = spec.centre[up] - bed;
+    if (!(paddle.hinge_height < paddle.depth)) {
+      fail(require(node, path, "hinge"),
+           child(path, "hinge") + ": the flap's hinge must be below the still-water level (bed " +
+               std::to_string(bed) + " + depth " + std::to_string(paddle.depth) + ")");
+    }
+    spec.lever = paddle.depth - paddle.hinge_height;
+    Eigen::Vector3d upv = Eigen::Vector3d::Zero();
+    upv[up] = 1.0;
+    spec.axis = upv.cross(spec.direction).normalized();
+  } else {
+    for (const char* key : {"hinge", "bed"})
+      if (auto v = find(node, key))
+        fail(*v, child(path, key) + ": '" + key + "' is for a flap paddle (paddle: flap)");
+  }
+
+  std::ostringstream label;
+  label.precision(4);
+  label << kind << " wave, " << (flap ? "flap" : "piston") << ", depth " << paddle.depth << " m";
+  double period_for_ramp = 0.0;
+  try {
+    waves::PaddleSignal signal;
+    if (kind == "regular") {
+      const double h = number_pos("height"), t = number_pos("period");
+      int order = 1;
+      if (auto v = find(node, "order")) {
+        order = integer(*v, child(path, "order"));
+        expect(order == 1 || order == 2, *v, child(path, "order"), "1 or 2");
+        if (order == 2 && flap)
+          fail(*v, child(path, "order") +
+                       ": second-order generation is implemented for pistons only; use order: "
+                       "1 with a flap");
+      }
+      double phase = 0.0;
+      if (auto v = find(node, "phase")) phase = kDegree * number(*v, child(path, "phase"));
+      signal = waves::regular_paddle(paddle, h, t, order, phase, g_);
+      const waves::WaveAssessment a = waves::assess_regular_wave(h, t, paddle.depth, paddle,
+                                                                 order, dp_, g_);
+      label << ", H " << h << " m, T " << t << " s, order " << order << " (L " << a.length
+            << " m, kd " << a.kd << ", " << a.theory << "; stroke " << a.stroke << " m)";
+      spec.wave_notes = a.warnings;
+      period_for_ramp = t;
+    } else if (kind == "solitary") {
+      if (flap) fail(node, path + ": a solitary wave (Goring 1978) needs paddle: piston");
+      if (auto v = find(node, "ramp"))
+        fail(*v, child(path, "ramp") + ": a solitary wave starts from rest and takes no ramp");
+      const double h = number_pos("height");
+      signal = waves::solitary_paddle(paddle, h, g_);
+      label << ", H " << h << " m (stroke " << signal.soliton.stroke << " m over "
+            << signal.soliton.duration << " s)";
+    } else {
+      waves::SpectrumSpec sp;
+      sp.tp = number_pos("tp");
+      if (auto v = find(node, "spectrum"))
+        sp.shape = choice(*v, child(path, "spectrum"), {"jonswap", "pm"}) == "pm"
+                       ? waves::SpectrumSpec::Shape::PiersonMoskowitz
+                       : waves::SpectrumSpec::Shape::Jonswap;
+      if (auto v = find(node, "gamma"))
+        sp.gamma = number_if(
+            *v, child(path, "gamma"), [](double g) { return g >= 1.0 && g <= 20.0; },
+            "a number in [1, 20]");
+      sp.components = kind == "focused" ? 60 : 200;
+      if (auto v = find(node, "components")) {
+        sp.components = integer(*v, child(path, "components"));
+        expect(sp.components >= 1 && sp.components <= 5000, *v, child(path, "components"),
+               "an integer in [1, 5000]");
+      }
+      if (auto v = find(node, "f_min")) sp.f_min = number_pos("f_min");
+      if (auto v = find(node, "f_max")) sp.f_max = number_pos("f_max");
+      const double f_lo = sp.f_min > 0 ? sp.f_min : 0.5 / sp.tp;
+      const double f_hi = sp.f_max > 0 ? sp.f_max : 3.0 / sp.tp;
+      if (!(f_hi > f_lo))
+        fail(node, path + ": f_max (" + std::to_string(f_hi) + " Hz) must exceed f_min (" +
+                       std::to_string(f_lo) + " Hz)");
+      period_for_ramp = sp.tp;
+      if (kind == "irregular") {
+        sp.hs = number_pos("hs");
+        if (auto v = find(node, "seed")) {
+          const long seed = integer(*v, child(path, "seed"));
+          expect(seed >= 0, *v, child(path, "seed"), "an integer >= 0");
+          sp.seed = static_cast<std::uint64_t>(seed);
+        }
+        signal = waves::linear_paddle(paddle, waves::irregular_sea(sp), g_);
+        label << ", Hs " << sp.hs << " m, Tp " << sp.tp << " s, " << sp.components
+              << " components, seed " << sp.seed;
+      } else {
+        const double a = number_pos("amplitude");
+        const double xf = number_pos("focus_distance");
+        const double tf = number_pos("focus_time");
+        signal = waves::linear_paddle(
+            paddle, waves::focused_group(sp, a, xf, tf, paddle.depth, g_), g_);
+        label << ", crest " << a << " m at " << xf << " m from the paddle, t " << tf
+              << " s, Tp " << sp.tp << " s";
+      }
+    }
+    spec.paddle = std::make_shared<const waves::PaddleSignal>(std::move(signal));
+  } catch (const std::invalid_argument& e) {
+    fail(node, path + ": " + e.what());
+  }
+  if (!find(node, "ramp") && period_for_ramp > 0.0) spec.ramp = 2.0 * period_for_ramp;
+  label << ", ramp " << spec.ramp << " s";
+  spec.wave_label = label.str();
+}
+
 // centre (required) and axis (optional, always 3 numbers; z in 2D) of a rotation.
 void MotionReader::read_pivot(const YAML::Node& node, const std::string& path,
                               MotionSpec& spec) const {
@@ -274,8 +460,8 @@ Eigen::Vector3d MotionReader::unit(const YAML::Node& node, const std::string& pa
 }  // namespace
 
 MotionSpec read_motion(const NodeReader& reader, const YAML::Node& node, const std::string& path,
-                       const std::string& case_dir) {
-  return MotionReader(reader, case_dir).read(node, path);
+                       const std::string& case_dir, double g, double dp) {
+  return MotionReader(reader, case_dir, g, dp).read(node, path);
 }
 
 }  // namespace swell::case_parse

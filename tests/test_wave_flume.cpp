@@ -1,0 +1,199 @@
+// Wavemakers end to end: the `motion: {type: wave}` case keys, the paddle's motion law (piston
+// and flap) and a short, coarse regular-wave flume whose first gauge must read the target wave
+// height and period.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <sstream>
+
+#include "case_run.hpp"
+#include "io/case_file.hpp"
+#include "validation/metrics.hpp"
+#include "waves/theory.hpp"
+#include "waves/wavemaker.hpp"
+
+namespace swell {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = std::numbers::pi;
+
+std::string flume_case(const std::string& motion, double end = 1.0) {
+  std::ostringstream c;
+  c << "dim: 2\ndp: 0.015\ntime: {end: " << end << "}\nbodies:\n"
+    << "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [3.5, 0.5]}}, layers: 3,"
+       " open: [ymax]}\n"
+    << "  - name: paddle\n    kind: boundary\n"
+       "    shape: {box: {min: [0.1, 0.0], max: [0.13, 0.45]}}\n    walls: outside\n"
+       "    layers: 2\n"
+    << "    motion: " << motion << "\n"
+    << "  - {name: water, kind: fluid, shape: {box: {min: [0.145, 0], max: [3.5, 0.3]}}}\n";
+  return c.str();
+}
+
+TEST(WaveCaseKeys, RegularPistonAndFlap) {
+  const CaseSpec s = parse_case_text(
+      flume_case("{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1.0, order: 2}"),
+      "flume.yaml");
+  const MotionSpec& m = s.bodies[1].motion;
+  ASSERT_EQ(m.type, MotionSpec::Type::Wave);
+  ASSERT_TRUE(m.paddle);
+  const waves::PaddleSignal ref = waves::regular_paddle(
+      {waves::PaddleGeometry::Type::Piston, 0.3, 0.0}, 0.04, 1.0, 2, 0.0, 9.81);
+  ASSERT_EQ(m.paddle->components.size(), 2u);
+  EXPECT_DOUBLE_EQ(m.paddle->components[0].amplitude, ref.components[0].amplitude);
+  EXPECT_DOUBLE_EQ(m.paddle->components[1].amplitude, ref.components[1].amplitude);
+  EXPECT_DOUBLE_EQ(m.ramp, 2.0);  // default: two periods
+  EXPECT_NE(m.wave_label.find("order 2"), std::string::npos);
+
+  const CaseSpec f = parse_case_text(
+      flume_case("{type: wave, paddle: flap, wave: regular, depth: 0.3, height: 0.03, "
+                 "period: 1.2, hinge: [0.115, 0.05], ramp: 1.0}"),
+      "flume.yaml");
+  const MotionSpec& fm = f.bodies[1].motion;
+  EXPECT_DOUBLE_EQ(fm.lever, 0.25);
+  EXPECT_DOUBLE_EQ(fm.ramp, 1.0);
+  EXPECT_EQ(fm.paddle->paddle.type, waves::PaddleGeometry::Type::Flap);
+  EXPECT_DOUBLE_EQ(fm.paddle->paddle.hinge_height, 0.05);
+  // Where the flap crosses the still-water level (`lever` above the hinge) it is displaced by
+  // exactly X(t): the line from the hinge through a point of the plate, cut at the SWL.
+  const MotionLaw law(fm);
+  const Eigen::Vector3d hinge(0.115, 0.05, 0.0), swl(0.115, 0.3, 0.0);
+  for (double t : {1.3, 1.7, 2.9}) {  // after the 1 s ramp
+    Eigen::Vector3d x, v;
+    law.place(law.pose(t), swl, x, v);
+    const Eigen::Vector3d u = x - hinge;
+    EXPECT_NEAR(u.x() * 0.25 / u.y(), fm.paddle->displacement(t), 1e-13) << t;
+    EXPECT_GT(std::abs(fm.paddle->displacement(t)), 1e-3) << t;
+    const double e = 1e-6;
+    Eigen::Vector3d xp, xm, dummy;
+    law.place(law.pose(t + e), swl, xp, dummy);
+    law.place(law.pose(t - e), swl, xm, dummy);
+    EXPECT_NEAR(v.x(), (xp.x() - xm.x()) / (2 * e), 1e-7) << t;
+    EXPECT_EQ(x.z(), 0.0);
+  }
+
+  // Irregular and focused seas, solitary waves.
+  const CaseSpec irr = parse_case_text(
+      flume_case("{type: wave, wave: irregular, depth: 0.3, hs: 0.03, tp: 1.2, gamma: 3.3, "
+                 "components: 50, seed: 7}"),
+      "flume.yaml");
+  EXPECT_EQ(irr.bodies[1].motion.paddle->components.size(), 50u);
+  const CaseSpec foc = parse_case_text(
+      flume_case("{type: wave, wave: focused, depth: 0.3, amplitude: 0.03, tp: 1.2, "
+                 "focus_distance: 2.0, focus_time: 8.0}"),
+      "flume.yaml");
+  EXPECT_EQ(foc.bodies[1].motion.paddle->components.size(), 60u);
+  const CaseSpec sol = parse_case_text(
+      flume_case("{type: wave, wave: solitary, depth: 0.3, height: 0.06}"), "flume.yaml");
+  EXPECT_TRUE(sol.bodies[1].motion.paddle->solitary);
+  EXPECT_DOUBLE_EQ(sol.bodies[1].motion.ramp, 0.0);
+}
+
+// Each bad key is reported at its line, naming the key and what was expected.
+TEST(WaveCaseKeys, BadKeysAreReported) {
+  const auto message = [](const std::string& motion) -> std::string {
+    try {
+      parse_case_text(flume_case(motion), "flume.yaml");
+    } catch (const CaseError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_NE(message("{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1, hs: 0.1}")
+                .find("a regular wave takes no 'hs' (it belongs to wave: irregular)"),
+            std::string::npos);
+  EXPECT_NE(message("{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1, order: 2, "
+                    "paddle: flap, hinge: [0.1, 0]}")
+                .find("pistons only"),
+            std::string::npos);
+  EXPECT_NE(message("{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1, "
+                    "hinge: [0.1, 0]}")
+                .find("'hinge' is for a flap"),
+            std::string::npos);
+  EXPECT_NE(message("{type: wave, wave: solitary, depth: 0.3, height: 0.04, ramp: 1}")
+                .find("takes no ramp"),
+            std::string::npos);
+  EXPECT_NE(message("{type: wave, wave: regular, depth: 0.3, period: 1}").find("height"),
+            std::string::npos);
+  EXPECT_NE(message("{type: wave, wave: regular, depth: -0.3, height: 0.04, period: 1}")
+                .find("bodies[1].motion.depth"),
+            std::string::npos);
+  EXPECT_NE(message("{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1, "
+                    "paddle: flap, hinge: [0.1, 0.4]}")
+                .find("below the still-water level"),
+            std::string::npos);
+  EXPECT_NE(message("{type: wave, wave: cnoidal, depth: 0.3}").find("regular"), std::string::npos);
+  EXPECT_NE(message("{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1, "
+                    "direction: [1, 1]}")
+                .find("horizontally"),
+            std::string::npos);
+}
+
+// Least-squares fit of a0 + sum_n (A_n cos n w t + B_n sin n w t), n = 1, 2, over [t0, t1];
+// returns the first and second harmonic amplitudes.
+std::pair<double, double> harmonics(const Series& s, double w, double t0, double t1) {
+  Eigen::MatrixXd a(0, 5);
+  std::vector<double> rows_t, rows_v;
+  for (std::size_t i = 0; i < s.t.size(); ++i)
+    if (s.t[i] >= t0 && s.t[i] <= t1) rows_t.push_back(s.t[i]), rows_v.push_back(s.v[i]);
+  a.resize(static_cast<Eigen::Index>(rows_t.size()), 5);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(rows_t.size()));
+  for (std::size_t i = 0; i < rows_t.size(); ++i) {
+    const double t = rows_t[i];
+    a.row(static_cast<Eigen::Index>(i)) << 1.0, std::cos(w * t), std::sin(w * t),
+        std::cos(2 * w * t), std::sin(2 * w * t);
+    b[static_cast<Eigen::Index>(i)] = rows_v[i];
+  }
+  const Eigen::VectorXd c = a.colPivHouseholderQr().solve(b);
+  return {std::hypot(c[1], c[2]), std::hypot(c[3], c[4])};
+}
+
+// Mean up-crossing period over [t0, t1] (crossings of the mean, linearly interpolated).
+double upcrossing_period(const Series& s, double t0, double t1) {
+  double mean = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < s.t.size(); ++i)
+    if (s.t[i] >= t0 && s.t[i] <= t1) mean += s.v[i], ++n;
+  mean /= n;
+  std::vector<double> up;
+  for (std::size_t i = 1; i < s.t.size(); ++i) {
+    if (s.t[i - 1] < t0 || s.t[i] > t1) continue;
+    const double a = s.v[i - 1] - mean, b = s.v[i] - mean;
+    if (a < 0.0 && b >= 0.0) up.push_back(s.t[i - 1] + (s.t[i] - s.t[i - 1]) * (-a) / (b - a));
+  }
+  if (up.size() < 2) return 0.0;
+  return (up.back() - up.front()) / double(up.size() - 1);
+}
+
+// A 2D piston flume, depth 0.3 m, H = 0.04 m, T = 1 s (kd = 1.37, a2/a1 = 0.075: second-order
+// generation), dp = 0.015 m (H/dp = 2.7: coarse), gauge 1.0 m from the paddle. The end wall
+// at 3.5 m reflects, but its echo reaches the gauge only after t = 6 s; the window is 3.5-5.5 s
+// (after the 2 s ramp and the travel to the gauge at c_g = 0.93 m/s).
+TEST(WaveFlume, RegularWaveHeightAndPeriodAtTheFirstGauge) {
+  const double H = 0.04, T = 1.0;
+  std::string text = flume_case("{type: wave, wave: regular, depth: 0.3, height: 0.04, "
+                                "period: 1.0, order: 2}",
+                                5.5);
+  text += "gauges:\n  - {name: eta1, kind: height, at: [1.1, 0.0], level: surface}\n"
+          "output: {every: 1.0, vtk: false, gauge_every: 0.01}\n";
+  const fs::path dir = fs::path(SWELL_BINARY_DIR) / "test_out" / "wave_flume_regular";
+  fs::remove_all(dir);
+  test::run_case_text(text, "wave_flume.yaml", dir, false, 2);
+  const SeriesTable table = read_series_table((dir / "gauges_height.csv").string());
+  const Series eta = table.series("eta1");
+  const auto [a1, a2] = harmonics(eta, 2 * kPi / T, 3.5, 5.5);
+  const double period = upcrossing_period(eta, 3.5, 5.5);
+  std::cout << "first harmonic H = " << 2 * a1 << " m (target " << H << "), second a2/a1 = "
+            << a2 / a1 << " (Stokes " << waves::stokes2_harmonic_ratio(
+                   waves::wave_number(2 * kPi / T, 0.3), 0.3, H)
+            << "), T = " << period << " s\n";
+  EXPECT_NEAR(2 * a1 / H, 1.0, 0.05);
+  EXPECT_NEAR(period / T, 1.0, 0.01);
+}
+
+}  // namespace
+}  // namespace swell

@@ -1,0 +1,242 @@
+// waves/: dispersion, paddle transfer functions, paddle signals (regular first and second
+// order, solitary, focused, irregular), spectra and the validity assessment, each against an
+// independent computation or a limit that theory fixes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "waves/dispersion.hpp"
+#include "waves/spectrum.hpp"
+#include "waves/theory.hpp"
+#include "waves/wavemaker.hpp"
+
+namespace swell::waves {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double g = 9.81;
+
+// Wave number by bisection on omega^2 = g k tanh(kd): an independent root finder.
+double k_bisection(double omega, double d) {
+  double lo = 1e-12, hi = 1e4;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (g * mid * std::tanh(mid * d) < omega * omega ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+TEST(WaveDispersion, MatchesBisectionAndLimits) {
+  for (double d : {0.05, 0.4, 0.7, 3.0, 50.0})
+    for (double T : {0.5, 1.0, 2.0, 5.0, 12.0}) {
+      const double w = 2 * kPi / T;
+      const double k = wave_number(w, d, g);
+      EXPECT_NEAR(k, k_bisection(w, d), 1e-12 * k) << d << " " << T;
+      EXPECT_NEAR(g * k * std::tanh(k * d), w * w, 1e-13 * w * w);
+    }
+  // Deep water: L0 = g T^2 / (2 pi); shallow water: c = sqrt(g d).
+  EXPECT_NEAR(wave_length(2.0, 100.0, g), g * 4.0 / (2 * kPi), 1e-9);
+  EXPECT_NEAR(phase_speed(2 * kPi / 200.0, 0.1, g), std::sqrt(g * 0.1), 1e-4);
+  EXPECT_NEAR(group_ratio(1e-9), 1.0, 1e-12);
+  EXPECT_NEAR(group_ratio(40.0), 0.5, 1e-12);
+  EXPECT_THROW(wave_number(0.0, 1.0, g), std::invalid_argument);
+  EXPECT_THROW(wave_number(1.0, -1.0, g), std::invalid_argument);
+}
+
+// The general transfer function F = 4 k sinh(kd) I / (sinh 2kd + 2kd) by quadrature of
+// I = int f(z) cosh k(d + z) dz: an independent check of the closed forms.
+double transfer_quadrature(double k, double d, double hinge, bool piston) {
+  const int n = 20000;
+  double integral = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double s = (i + 0.5) * d / n;  // height above the bed
+    const double f = piston ? 1.0 : std::max(0.0, (s - hinge) / (d - hinge));
+    integral += f * std::cosh(k * s) * d / n;
+  }
+  return 4 * k * std::sinh(k * d) * integral / (std::sinh(2 * k * d) + 2 * k * d);
+}
+
+TEST(WaveTransfer, PistonAndFlapAgainstQuadratureAndLimits) {
+  const double d = 0.5;
+  for (double kd : {0.1, 0.5, 1.0, 2.0, 4.0}) {
+    const double k = kd / d;
+    PaddleGeometry piston{PaddleGeometry::Type::Piston, d, 0.0};
+    EXPECT_NEAR(transfer_function(piston, k), transfer_quadrature(k, d, 0, true), 1e-7);
+    for (double hinge : {0.0, 0.1, -0.2}) {
+      PaddleGeometry flap{PaddleGeometry::Type::Flap, d, hinge};
+      EXPECT_NEAR(transfer_function(flap, k), transfer_quadrature(k, d, hinge, false), 1e-6)
+          << "kd " << kd << " hinge " << hinge;
+    }
+    // Bottom-hinged flap in Dean & Dalrymple's form.
+    const double sh = std::sinh(kd);
+    const double dd = 4 * sh * (kd * sh - std::cosh(kd) + 1) / (kd * (std::sinh(2 * kd) + 2 * kd));
+    EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Flap, d, 0.0}, k), dd, 1e-12);
+  }
+  // Shallow water: piston H/S -> kd, bottom flap -> kd / 2; deep water: 2 and 2 (1 - 1/kd).
+  EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Piston, 1.0, 0}, 1e-3), 1e-3, 1e-8);
+  EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Flap, 1.0, 0}, 1e-3), 0.5e-3, 1e-8);
+  EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Piston, 1.0, 0}, 30.0), 2.0, 1e-12);
+  EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Flap, 1.0, 0}, 30.0), 2 * (1 - 1 / 30.0),
+              1e-12);
+  EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Flap, 1.0, 0}, 400.0),
+              2 * (1 - 1 / 400.0), 1e-12);
+  EXPECT_THROW(transfer_function({PaddleGeometry::Type::Flap, 1.0, 1.0}, 1.0),
+               std::invalid_argument);
+}
+
+TEST(WavePaddle, RegularFirstAndSecondOrder) {
+  const PaddleGeometry piston{PaddleGeometry::Type::Piston, 0.6, 0.0};
+  const double H = 0.08, T = 1.6, w = 2 * kPi / T;
+  const double k = k_bisection(w, 0.6), kd = k * 0.6;
+  const double F = 2 * (std::cosh(2 * kd) - 1) / (std::sinh(2 * kd) + 2 * kd);
+  const PaddleSignal s1 = regular_paddle(piston, H, T, 1, 0.3, g);
+  ASSERT_EQ(s1.components.size(), 1u);
+  EXPECT_NEAR(s1.components[0].amplitude, 0.5 * H / F, 1e-12);
+  EXPECT_NEAR(s1.displacement(0.7), 0.5 * H / F * std::sin(w * 0.7 + 0.3), 1e-12);
+  // Velocity is the derivative of displacement.
+  const double e = 1e-6;
+  EXPECT_NEAR(s1.velocity(0.7), (s1.displacement(0.7 + e) - s1.displacement(0.7 - e)) / (2 * e),
+              1e-8);
+  const PaddleSignal s2 = regular_paddle(piston, H, T, 2, 0.0, g);
+  ASSERT_EQ(s2.components.size(), 2u);
+  EXPECT_DOUBLE_EQ(s2.components[1].omega, 2 * w);
+  // In shallow water Madsen's term is the bound second harmonic of Stokes' theory, a2 = 3 H^2 /
+  // (16 k^2 d^3), made by a piston of transfer 2kd at 2 omega: 3 H^2 / (32 k^3 d^4).
+  const PaddleGeometry shallow{PaddleGeometry::Type::Piston, 0.1, 0.0};
+  const double Ts = 20.0, ks = k_bisection(2 * kPi / Ts, 0.1), Hs = 0.005;
+  const PaddleSignal sh = regular_paddle(shallow, Hs, Ts, 2, 0.0, g);
+  const double expect = 3 * Hs * Hs / (32 * std::pow(ks, 3) * std::pow(0.1, 4));
+  EXPECT_NEAR(sh.components[1].amplitude / expect, 1.0, 0.01);
+  // Linear components through linear_paddle give the same first-order paddle.
+  const PaddleSignal lin = linear_paddle(piston, {{0.5 * H, w, 0.3}}, g);
+  EXPECT_NEAR(lin.components[0].amplitude, s1.components[0].amplitude, 1e-14);
+  EXPECT_THROW(regular_paddle({PaddleGeometry::Type::Flap, 0.6, 0.0}, H, T, 2), std::invalid_argument);
+  EXPECT_THROW(regular_paddle(piston, H, T, 3), std::invalid_argument);
+  EXPECT_THROW(regular_paddle(piston, -H, T, 1), std::invalid_argument);
+}
+
+TEST(WavePaddle, GoringSolitaryTrajectory) {
+  const double d = 0.4, H = 0.08;
+  const PaddleSignal s = solitary_paddle({PaddleGeometry::Type::Piston, d, 0.0}, H, g);
+  const SolitaryPaddle& p = s.soliton;
+  EXPECT_NEAR(p.kappa, std::sqrt(3 * H / (4 * d * d * d)), 1e-14);
+  EXPECT_NEAR(p.stroke, 2 * H / (p.kappa * d), 1e-14);
+  EXPECT_DOUBLE_EQ(s.displacement(0.0), 0.0);
+  // The full stroke is covered to within Goring's 0.1 %.
+  EXPECT_NEAR(s.displacement(p.duration) / p.stroke, 1.0, 2e-3);
+  EXPECT_EQ(s.velocity(-1.0), 0.0);
+  EXPECT_EQ(s.velocity(p.duration + 1.0), 0.0);
+  // The paddle moves with the depth-averaged wave velocity c eta / (d + eta) at its own position:
+  // the displacement's finite-difference derivative and the formula at the wave's crest.
+  const double mid = 0.5 * p.duration, e = 1e-6;
+  for (double t : {0.3 * p.duration, mid, 0.8 * p.duration}) {
+    const double fd = (s.displacement(t + e) - s.displacement(t - e)) / (2 * e);
+    EXPECT_NEAR(s.velocity(t), fd, 1e-7 * p.celerity);
+    const double xi = s.displacement(t) + p.start;  // position in the wave's frame
+    const double ch = std::cosh(p.kappa * (p.celerity * (t - mid) - xi));
+    const double eta = H / (ch * ch);
+    EXPECT_NEAR(s.velocity(t), p.celerity * eta / (d + eta), 1e-12);
+  }
+  EXPECT_NEAR(s.velocity(mid), p.celerity * H / (d + H), 1e-12);
+  EXPECT_THROW(solitary_paddle({PaddleGeometry::Type::Flap, d, 0.0}, H), std::invalid_argument);
+}
+
+TEST(WaveSpectrum, ShapeAndIrregularSea) {
+  SpectrumSpec j;
+  j.hs = 0.1;
+  j.tp = 1.5;
+  j.gamma = 3.3;
+  SpectrumSpec pm = j;
+  pm.shape = SpectrumSpec::Shape::PiersonMoskowitz;
+  // Peak at fp; the JONSWAP peak is gamma times the Pierson-Moskowitz one.
+  const double fp = 1 / j.tp;
+  EXPECT_NEAR(spectrum_shape(j, fp) / spectrum_shape(pm, fp), 3.3, 1e-12);
+  double best = 0, fbest = 0;
+  for (int i = 1; i < 20000; ++i) {
+    const double f = i * 1e-4 * 3;
+    if (spectrum_shape(j, f) > best) best = spectrum_shape(j, f), fbest = f;
+  }
+  EXPECT_NEAR(fbest, fp, 3e-4);
+  const auto sea = irregular_sea(j);
+  ASSERT_EQ(sea.size(), 200u);
+  double m0 = 0, phase_mean = 0;
+  for (const auto& c : sea) {
+    m0 += 0.5 * c.amplitude * c.amplitude;
+    EXPECT_GE(c.phase, 0.0);
+    EXPECT_LT(c.phase, 2 * kPi);
+    phase_mean += c.phase / sea.size();
+  }
+  EXPECT_NEAR(4 * std::sqrt(m0), 0.1, 1e-12);
+  EXPECT_NEAR(phase_mean, kPi, 0.5);  // uniform phases: mean pi, sd of the mean ~0.13
+  // Reproducible: the same seed gives the same phases; another seed other ones.
+  const auto again = irregular_sea(j);
+  for (std::size_t i = 0; i < sea.size(); ++i) EXPECT_EQ(sea[i].phase, again[i].phase);
+  SpectrumSpec other = j;
+  other.seed = 2;
+  EXPECT_NE(irregular_sea(other)[0].phase, sea[0].phase);
+  // The elevation synthesised over one repeat period has variance m0 (Parseval for the set).
+  const double repeat = 200 / (3 / j.tp - 0.5 / j.tp);
+  double var = 0;
+  const int n = 2000;  // more than twice the highest harmonic index (~170)
+  for (int i = 0; i < n; ++i) {
+    const double eta = linear_elevation(sea, 0.6, 0.0, repeat * i / n, g);
+    var += eta * eta / n;
+  }
+  EXPECT_NEAR(var / m0, 1.0, 1e-6);
+  j.gamma = 0.5;
+  EXPECT_THROW(irregular_sea(j), std::invalid_argument);
+}
+
+TEST(WaveSpectrum, FocusedGroupCrestsAtFocus) {
+  SpectrumSpec s;
+  s.tp = 1.4;
+  s.components = 60;
+  const double A = 0.05, xf = 6.0, tf = 20.0, d = 0.6;
+  const auto group = focused_group(s, A, xf, tf, d, g);
+  EXPECT_NEAR(linear_elevation(group, d, xf, tf, g), A, 1e-12);
+  // Nowhere else on the focus line in time is the elevation as high.
+  for (double t = 0; t < 40; t += 0.05)
+    if (std::abs(t - tf) > 0.2) EXPECT_LT(linear_elevation(group, d, xf, t, g), 0.9 * A) << t;
+}
+
+TEST(WaveTheory, StokesSecondOrderCrestAndTrough) {
+  const double H = 0.1, T = 2.0, d = 0.5;
+  const double k = k_bisection(2 * kPi / T, d);
+  const double r = stokes2_harmonic_ratio(k, d, H);
+  EXPECT_NEAR(stokes2_elevation(H, T, d, 0, 0, 0, g), 0.5 * H * (1 + r), 1e-12);
+  EXPECT_NEAR(stokes2_elevation(H, T, d, kPi / k, 0, 0, g), -0.5 * H * (1 - r), 1e-12);
+  // Deep water: a2/a1 -> k H / 4 (= k a / 2).
+  EXPECT_NEAR(stokes2_harmonic_ratio(10.0, 100.0, 0.01), 10.0 * 0.01 / 4, 1e-12);
+  EXPECT_NEAR(solitary_elevation(0.05, 0.5, 3.0, 0.0, 3.0, g), 0.05, 1e-15);
+}
+
+TEST(WaveTheory, AssessmentRegimesAndWarnings) {
+  const PaddleGeometry piston{PaddleGeometry::Type::Piston, 0.0, 0.0};
+  // A gentle intermediate-depth wave: linear, no warning.
+  auto a = assess_regular_wave(0.01, 1.2, 0.6, piston, 1, 0.0, g);
+  EXPECT_EQ(a.theory, "linear (Airy)");
+  EXPECT_TRUE(a.warnings.empty());
+  EXPECT_NEAR(a.stroke * a.transfer, 0.01, 1e-14);
+  EXPECT_NEAR(a.ursell, 0.01 * a.length * a.length / std::pow(0.6, 3), 1e-12);
+  // A steeper one needs second order, and says so for first-order generation.
+  a = assess_regular_wave(0.1, 1.6, 0.6, piston, 1, 0.0, g);
+  EXPECT_EQ(a.theory, "Stokes second order");
+  ASSERT_EQ(a.warnings.size(), 1u);
+  EXPECT_NE(a.warnings[0].find("order 2"), std::string::npos);
+  EXPECT_TRUE(assess_regular_wave(0.1, 1.6, 0.6, piston, 2, 0.0, g).warnings.empty());
+  // Long waves in shallow water are cnoidal; over-steep waves break.
+  a = assess_regular_wave(0.05, 10.0, 0.3, piston, 1, 0.0, g);
+  EXPECT_NE(a.theory.find("cnoidal"), std::string::npos);
+  EXPECT_NE(a.depth_regime.find("shallow"), std::string::npos);
+  a = assess_regular_wave(0.5, 1.0, 2.0, piston, 1, 0.0, g);
+  EXPECT_NE(a.theory.find("breaking"), std::string::npos);
+  EXPECT_NE(a.depth_regime.find("deep"), std::string::npos);
+  // Resolution warnings with dp.
+  a = assess_regular_wave(0.05, 1.6, 0.6, piston, 2, 0.01, g);
+  ASSERT_FALSE(a.warnings.empty());
+  EXPECT_NE(a.warnings.back().find("H/dp"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace swell::waves

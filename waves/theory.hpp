@@ -1,0 +1,58 @@
+// Regular-wave theory for checking and planning: surface elevations (linear, Stokes second
+// order, solitary) and the validity assessment `swell waves H T d` prints.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "waves/wavemaker.hpp"
+
+namespace swell::waves {
+
+// Stokes second-order elevation of a wave of height H, period T in depth d travelling towards
+// +x, theta = k x - w t + phi (Dean & Dalrymple 1991, eq. 11.29):
+//   eta = H/2 cos theta + (pi H^2 / (8 L)) cosh kd (2 + cosh 2kd) / sinh^3 kd cos 2 theta.
+double stokes2_elevation(double height, double period, double depth, double x, double t,
+                         double phase = 0.0, double g = kStandardGravity);
+
+// Ratio of the second-harmonic to the first-harmonic amplitude of Stokes' second-order wave:
+// (k H / 8) cosh kd (2 + cosh 2kd) / sinh^3 kd.
+double stokes2_harmonic_ratio(double k, double depth, double height);
+
+// First-order solitary wave (Boussinesq): eta = H sech^2(kappa (x - x0 - c t)), kappa and c as in
+// SolitaryPaddle.
+double solitary_elevation(double height, double depth, double x, double t, double x0 = 0.0,
+                          double g = kStandardGravity);
+
+// What a regular wave of height H, period T in depth d is, and which theory describes it.
+struct WaveAssessment {
+  double height = 0, period = 0, depth = 0;
+  double k = 0, length = 0, kd = 0, celerity = 0, group_celerity = 0;
+  double steepness = 0;       // H / L
+  double ursell = 0;          // H L^2 / d^3
+  double relative_depth = 0;  // d / L
+  double d_gt2 = 0, h_gt2 = 0;  // Le Mehaute's (1976) chart coordinates d / (g T^2), H / (g T^2)
+  double breaking_height = 0;   // Miche (1944): 0.142 L tanh(kd)
+  double harmonic_ratio = 0;    // a2 / a1 of Stokes' second order
+  std::string depth_regime;     // shallow (d/L < 1/20), intermediate, deep (d/L > 1/2)
+  std::string theory;           // the lowest-order theory that describes the wave
+  double stroke = 0;            // full paddle stroke S at the SWL, first order [m]
+  double stroke2 = 0;           // second-order (Madsen) term amplitude [m], pistons
+  double transfer = 0;          // H / S
+  std::vector<std::string> warnings;
+};
+
+// The criteria (documented in the README, not a chart read by eye):
+// - breaking: H >= the Miche limit;
+// - cnoidal regime: Ursell number > 26 (the Stokes/cnoidal boundary of Le Mehaute's chart,
+//   Hedges 1995 discusses it): Stokes theories and Stokes paddles are outside their validity;
+// - Stokes second order is needed when a2/a1 >= 0.02 (the second harmonic is 2 % of the first
+//   or more); it is itself invalid when a2/a1 >= 1/4 (a secondary crest appears in the trough);
+// - otherwise linear theory.
+// `order` (1 or 2) is the generation order the case asks for: warnings name a mismatch. `dp`
+// (> 0) adds the resolution checks H/dp >= 10 and L/dp >= 50.
+WaveAssessment assess_regular_wave(double height, double period, double depth,
+                                   const PaddleGeometry& paddle, int order, double dp = 0.0,
+                                   double g = kStandardGravity);
+
+}  // namespace swell::waves
