@@ -17,6 +17,7 @@
 #include "apps/probe_command.hpp"
 #include "apps/stop_signals.hpp"
 #include "apps/validate_command.hpp"
+#include "apps/wave_analysis_command.hpp"
 #include "io/case_file.hpp"
 #include "io/hdf5_file.hpp"
 #include "solver/time/simulation.hpp"
@@ -182,6 +183,12 @@ int main(int argc, char** argv) {
       ->needs(single);
   bench->add_option("-t", bench_single.threads, "with --single: threads")->needs(single);
 
+  // `swell waves`: wave theory and wave analysis. Its subcommand `analyse`
+  // (apps/wave_analysis_command) runs in the dispatch below.
+  auto* waves = app.add_subcommand("waves", "wave theory and wave analysis");
+  waves->require_subcommand(0, 1);
+  const swell::WavesAnalyseCommand waves_analyse = swell::add_waves_analyse_command(*waves);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -275,6 +282,8 @@ int main(int argc, char** argv) {
     } else if (*foam) {
       const swell::CaseSpec spec = swell::load_case_file(foam_case);
       swell::run_foam_command(spec, foam_opt, std::cout);
+    } else if (waves_analyse.chosen()) {  // swell waves analyse
+      waves_analyse.run(std::cout);
     }
   } catch (const swell::Interrupted& e) {
     std::cerr << "swell: " << e.what() << "\n";
