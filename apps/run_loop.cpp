@@ -141,7 +141,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   for (const auto& b : spec.bodies) {
     if (b.motion.type != MotionSpec::Type::Wave) continue;
     log << "  wavemaker " << b.name << ": " << b.motion.wave_label << "\n";
-    for (const auto& w : b.motion.wave_notes) log << "  warning: wavemaker " << b.name << ": " << w << "\n";
+    for (const auto& w : b.motion.wave_notes)
+      log << "  warning: wavemaker " << b.name << ": " << w << "\n";
   }
   for (const auto& w : setup.warnings) log << "  " << w << "\n";
 

@@ -17,6 +17,7 @@
 #include "apps/probe_command.hpp"
 #include "apps/stop_signals.hpp"
 #include "apps/validate_command.hpp"
+#include "apps/wave_analysis_command.hpp"
 #include "apps/waves_command.hpp"
 #include "io/case_file.hpp"
 #include "io/hdf5_file.hpp"
@@ -184,15 +185,19 @@ int main(int argc, char** argv) {
   bench->add_option("-t", bench_single.threads, "with --single: threads")->needs(single);
 
   swell::WavesOptions waves_opt;
+  // `swell waves H T d`: regular-wave theory and paddle stroke (apps/waves_command); its
+  // subcommand `analyse` (apps/wave_analysis_command) runs in the dispatch below.
   auto* waves = app.add_subcommand(
-      "waves", "regular-wave theory and paddle stroke: swell waves H T d [--paddle flap --hinge l]");
+      "waves", "wave theory (swell waves H T d [--paddle flap --hinge l]) and analysis (analyse)");
   waves->require_subcommand(0, 1);
+  const swell::WavesAnalyseCommand waves_analyse = swell::add_waves_analyse_command(*waves);
   auto* waves_h = waves->add_option("H", waves_opt.height, "wave height [m]")->check(kPositive);
   waves->add_option("T", waves_opt.period, "wave period [s]")->check(kPositive);
   waves->add_option("d", waves_opt.depth, "still-water depth [m]")->check(kPositive);
   waves->add_option("--paddle", waves_opt.paddle, "piston (default) | flap")
       ->check(CLI::IsMember({"piston", "flap"}));
-  waves->add_option("--hinge", waves_opt.hinge, "flap: hinge height above the bed [m] (< 0: below)");
+  waves->add_option("--hinge", waves_opt.hinge,
+                    "flap: hinge height above the bed [m] (< 0: below)");
   waves->add_option("--order", waves_opt.order, "generation order 1 | 2 (default 1)")
       ->check(CLI::IsMember({1, 2}));
   waves->add_option("--dp", waves_opt.dp, "particle spacing [m]: resolution checks")
@@ -296,6 +301,8 @@ int main(int argc, char** argv) {
     } else if (*foam) {
       const swell::CaseSpec spec = swell::load_case_file(foam_case);
       swell::run_foam_command(spec, foam_opt, std::cout);
+    } else if (waves_analyse.chosen()) {  // swell waves analyse
+      waves_analyse.run(std::cout);
     }
   } catch (const swell::Interrupted& e) {
     std::cerr << "swell: " << e.what() << "\n";

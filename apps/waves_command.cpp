@@ -31,16 +31,16 @@ int run_waves(const WavesOptions& opt, std::ostream& out) {
   }
   if (opt.order != 1 && opt.order != 2)
     throw std::invalid_argument("--order: expected 1 or 2, got " + std::to_string(opt.order));
-  const waves::WaveAssessment a =
-      waves::assess_regular_wave(opt.height, opt.period, opt.depth, paddle, opt.order, opt.dp,
-                                 opt.g);
+  const waves::WaveAssessment a = waves::assess_regular_wave(opt.height, opt.period, opt.depth,
+                                                             paddle, opt.order, opt.dp, opt.g);
   out << "regular wave H = " << opt.height << " m, T = " << opt.period << " s in d = " << opt.depth
       << " m (g = " << opt.g << " m/s^2)\n";
   out << line("wave length L [m]", "%.5g", a.length) << line("wave number k [rad/m]", "%.5g", a.k)
       << line("kd", "%.4g", a.kd) << line("d/L", "%.4g", a.relative_depth)
       << line("phase speed c [m/s]", "%.4g", a.celerity)
       << line("group speed cg [m/s]", "%.4g", a.group_celerity)
-      << line("steepness H/L", "%.4g", a.steepness) << line("Ursell number H L^2/d^3", "%.4g", a.ursell)
+      << line("steepness H/L", "%.4g", a.steepness)
+      << line("Ursell number H L^2/d^3", "%.4g", a.ursell)
       << line("d/(g T^2) (Le Mehaute chart)", "%.4g", a.d_gt2)
       << line("H/(g T^2) (Le Mehaute chart)", "%.4g", a.h_gt2)
       << line("Miche breaking height [m]", "%.4g", a.breaking_height)

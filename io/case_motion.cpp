@@ -14,19 +14,19 @@
 // the gauge reader, a key that belongs to another type is reported as such.
 #include "io/case_motion.hpp"
 
-#include "waves/spectrum.hpp"
-#include "waves/theory.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
-#include <sstream>
-#include <utility>
 #include <span>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <utility>
 #include <vector>
+
+#include "waves/spectrum.hpp"
+#include "waves/theory.hpp"
 
 namespace swell::case_parse {
 
@@ -52,8 +52,9 @@ const std::vector<MotionTypeInfo>& motion_types() {
       {"file", MotionSpec::Type::File, {"file", "quantity", "direction", "centre", "axis"}},
       {"wave",
        MotionSpec::Type::Wave,
-       {"paddle", "wave", "depth", "direction", "hinge", "bed", "height", "period", "order",
-        "phase", "hs", "tp", "gamma", "spectrum", "components", "seed", "f_min", "f_max",
+       {"paddle",    "wave",           "depth",      "direction", "hinge", "bed",
+        "height",    "period",         "order",      "phase",     "hs",    "tp",
+        "gamma",     "spectrum",       "components", "seed",      "f_min", "f_max",
         "amplitude", "focus_distance", "focus_time"}},
   };
   return types;
@@ -357,8 +358,8 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
       double phase = 0.0;
       if (auto v = find(node, "phase")) phase = kDegree * number(*v, child(path, "phase"));
       signal = waves::regular_paddle(paddle, h, t, order, phase, g_);
-      const waves::WaveAssessment a = waves::assess_regular_wave(h, t, paddle.depth, paddle,
-                                                                 order, dp_, g_);
+      const waves::WaveAssessment a =
+          waves::assess_regular_wave(h, t, paddle.depth, paddle, order, dp_, g_);
       label << ", H " << h << " m, T " << t << " s, order " << order << " (L " << a.length
             << " m, kd " << a.kd << ", " << a.theory << "; stroke " << a.stroke << " m)";
       spec.wave_notes = a.warnings;
@@ -410,10 +411,10 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
         const double a = number_pos("amplitude");
         const double xf = number_pos("focus_distance");
         const double tf = number_pos("focus_time");
-        signal = waves::linear_paddle(
-            paddle, waves::focused_group(sp, a, xf, tf, paddle.depth, g_), g_);
-        label << ", crest " << a << " m at " << xf << " m from the paddle, t " << tf
-              << " s, Tp " << sp.tp << " s";
+        signal =
+            waves::linear_paddle(paddle, waves::focused_group(sp, a, xf, tf, paddle.depth, g_), g_);
+        label << ", crest " << a << " m at " << xf << " m from the paddle, t " << tf << " s, Tp "
+              << sp.tp << " s";
       }
     }
     spec.paddle = std::make_shared<const waves::PaddleSignal>(std::move(signal));

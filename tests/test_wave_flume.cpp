@@ -175,11 +175,13 @@ double upcrossing_period(const Series& s, double t0, double t1) {
 // (after the 2 s ramp and the travel to the gauge at c_g = 0.93 m/s).
 TEST(WaveFlume, RegularWaveHeightAndPeriodAtTheFirstGauge) {
   const double H = 0.04, T = 1.0;
-  std::string text = flume_case("{type: wave, wave: regular, depth: 0.3, height: 0.04, "
-                                "period: 1.0, order: 2}",
-                                5.5);
-  text += "gauges:\n  - {name: eta1, kind: height, at: [1.1, 0.0], level: surface}\n"
-          "output: {every: 1.0, vtk: false, gauge_every: 0.01}\n";
+  std::string text = flume_case(
+      "{type: wave, wave: regular, depth: 0.3, height: 0.04, "
+      "period: 1.0, order: 2}",
+      5.5);
+  text +=
+      "gauges:\n  - {name: eta1, kind: height, at: [1.1, 0.0], level: surface}\n"
+      "output: {every: 1.0, vtk: false, gauge_every: 0.01}\n";
   const fs::path dir = fs::path(SWELL_BINARY_DIR) / "test_out" / "wave_flume_regular";
   fs::remove_all(dir);
   test::run_case_text(text, "wave_flume.yaml", dir, false, 2);
@@ -187,9 +189,9 @@ TEST(WaveFlume, RegularWaveHeightAndPeriodAtTheFirstGauge) {
   const Series eta = table.series("eta1");
   const auto [a1, a2] = harmonics(eta, 2 * kPi / T, 3.5, 5.5);
   const double period = upcrossing_period(eta, 3.5, 5.5);
-  std::cout << "first harmonic H = " << 2 * a1 << " m (target " << H << "), second a2/a1 = "
-            << a2 / a1 << " (Stokes " << waves::stokes2_harmonic_ratio(
-                   waves::wave_number(2 * kPi / T, 0.3), 0.3, H)
+  std::cout << "first harmonic H = " << 2 * a1 << " m (target " << H
+            << "), second a2/a1 = " << a2 / a1 << " (Stokes "
+            << waves::stokes2_harmonic_ratio(waves::wave_number(2 * kPi / T, 0.3), 0.3, H)
             << "), T = " << period << " s\n";
   EXPECT_NEAR(2 * a1 / H, 1.0, 0.05);
   EXPECT_NEAR(period / T, 1.0, 0.01);

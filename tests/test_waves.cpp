@@ -79,8 +79,8 @@ TEST(WaveTransfer, PistonAndFlapAgainstQuadratureAndLimits) {
   EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Piston, 1.0, 0}, 30.0), 2.0, 1e-12);
   EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Flap, 1.0, 0}, 30.0), 2 * (1 - 1 / 30.0),
               1e-12);
-  EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Flap, 1.0, 0}, 400.0),
-              2 * (1 - 1 / 400.0), 1e-12);
+  EXPECT_NEAR(transfer_function({PaddleGeometry::Type::Flap, 1.0, 0}, 400.0), 2 * (1 - 1 / 400.0),
+              1e-12);
   EXPECT_THROW(transfer_function({PaddleGeometry::Type::Flap, 1.0, 1.0}, 1.0),
                std::invalid_argument);
 }
@@ -111,7 +111,8 @@ TEST(WavePaddle, RegularFirstAndSecondOrder) {
   // Linear components through linear_paddle give the same first-order paddle.
   const PaddleSignal lin = linear_paddle(piston, {{0.5 * H, w, 0.3}}, g);
   EXPECT_NEAR(lin.components[0].amplitude, s1.components[0].amplitude, 1e-14);
-  EXPECT_THROW(regular_paddle({PaddleGeometry::Type::Flap, 0.6, 0.0}, H, T, 2), std::invalid_argument);
+  EXPECT_THROW(regular_paddle({PaddleGeometry::Type::Flap, 0.6, 0.0}, H, T, 2),
+               std::invalid_argument);
   EXPECT_THROW(regular_paddle(piston, H, T, 3), std::invalid_argument);
   EXPECT_THROW(regular_paddle(piston, -H, T, 1), std::invalid_argument);
 }

@@ -11,8 +11,8 @@ namespace {
 
 void check_positive(double v, const char* what) {
   if (!(v > 0.0) || !std::isfinite(v))
-    throw std::invalid_argument(std::string("waves: ") + what + " must be a finite number > 0 (got " +
-                                std::to_string(v) + ")");
+    throw std::invalid_argument(std::string("waves: ") + what +
+                                " must be a finite number > 0 (got " + std::to_string(v) + ")");
 }
 
 }  // namespace

@@ -58,8 +58,8 @@ std::vector<SurfaceComponent> irregular_sea(const SpectrumSpec& spec) {
 }
 
 std::vector<SurfaceComponent> focused_group(const SpectrumSpec& spec, double crest_amplitude,
-                                            double focus_distance, double focus_time,
-                                            double depth, double g) {
+                                            double focus_distance, double focus_time, double depth,
+                                            double g) {
   double f_min = 0.0, f_max = 0.0;
   check(spec, f_min, f_max);
   if (!(crest_amplitude > 0.0))

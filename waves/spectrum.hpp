@@ -39,7 +39,7 @@ std::vector<SurfaceComponent> irregular_sea(const SpectrumSpec& spec);
 // sum a_i = crest amplitude A, phases phi_i = k_i x_f - omega_i t_f, so that every component
 // has its crest at x_f (distance from the paddle) at time t_f: eta(x_f, t_f) = A.
 std::vector<SurfaceComponent> focused_group(const SpectrumSpec& spec, double crest_amplitude,
-                                            double focus_distance, double focus_time,
-                                            double depth, double g = kStandardGravity);
+                                            double focus_distance, double focus_time, double depth,
+                                            double g = kStandardGravity);
 
 }  // namespace swell::waves

@@ -77,27 +77,31 @@ WaveAssessment assess_regular_wave(double height, double period, double depth,
   const bool cnoidal = a.ursell > 26.0;
   if (breaking) {
     a.theory = "breaking (H exceeds the Miche limit)";
-    a.warnings.push_back(fmt("H = %.4g m is at or above the Miche breaking limit %.4g m: the wave "
-                             "breaks at the paddle; no regular-wave theory applies",
-                             height, a.breaking_height));
+    a.warnings.push_back(
+        fmt("H = %.4g m is at or above the Miche breaking limit %.4g m: the wave "
+            "breaks at the paddle; no regular-wave theory applies",
+            height, a.breaking_height));
   } else if (cnoidal) {
     a.theory = "cnoidal / stream function (Ursell number > 26)";
-    a.warnings.push_back(fmt("Ursell number %.3g > 26: a cnoidal wave; Stokes theories and a "
-                             "Stokes paddle signal (first or second order) are outside their "
-                             "validity and will shed free harmonics",
-                             a.ursell));
+    a.warnings.push_back(
+        fmt("Ursell number %.3g > 26: a cnoidal wave; Stokes theories and a "
+            "Stokes paddle signal (first or second order) are outside their "
+            "validity and will shed free harmonics",
+            a.ursell));
   } else if (a.harmonic_ratio >= 0.25) {
     a.theory = "Stokes higher order (a2/a1 >= 1/4)";
-    a.warnings.push_back(fmt("a2/a1 = %.3f >= 1/4: Stokes second order predicts a secondary "
-                             "crest; a higher-order theory (Stokes V, stream function) is needed",
-                             a.harmonic_ratio));
+    a.warnings.push_back(
+        fmt("a2/a1 = %.3f >= 1/4: Stokes second order predicts a secondary "
+            "crest; a higher-order theory (Stokes V, stream function) is needed",
+            a.harmonic_ratio));
   } else if (a.harmonic_ratio >= 0.02) {
     a.theory = "Stokes second order";
     if (order == 1)
-      a.warnings.push_back(fmt("a2/a1 = %.3f: second-order effects are %.0f %% of the first "
-                               "harmonic; first-order generation will make a spurious free "
-                               "second harmonic (use order 2)",
-                               a.harmonic_ratio, 100.0 * a.harmonic_ratio));
+      a.warnings.push_back(
+          fmt("a2/a1 = %.3f: second-order effects are %.0f %% of the first "
+              "harmonic; first-order generation will make a spurious free "
+              "second harmonic (use order 2)",
+              a.harmonic_ratio, 100.0 * a.harmonic_ratio));
   } else {
     a.theory = "linear (Airy)";
   }
@@ -105,12 +109,13 @@ WaveAssessment assess_regular_wave(double height, double period, double depth,
     a.warnings.push_back("second-order generation is implemented for pistons only");
   if (dp > 0.0) {
     if (height / dp < 10.0)
-      a.warnings.push_back(fmt("H/dp = %.3g < 10: the wave height is resolved by fewer than 10 "
-                               "particles; expect strong numerical decay",
-                               height / dp));
+      a.warnings.push_back(
+          fmt("H/dp = %.3g < 10: the wave height is resolved by fewer than 10 "
+              "particles; expect strong numerical decay",
+              height / dp));
     if (a.length / dp < 50.0)
-      a.warnings.push_back(fmt("L/dp = %.3g < 50: the wave length is poorly resolved",
-                               a.length / dp));
+      a.warnings.push_back(
+          fmt("L/dp = %.3g < 50: the wave length is poorly resolved", a.length / dp));
   }
   return a;
 }

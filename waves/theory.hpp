@@ -28,9 +28,9 @@ double solitary_elevation(double height, double depth, double x, double t, doubl
 struct WaveAssessment {
   double height = 0, period = 0, depth = 0;
   double k = 0, length = 0, kd = 0, celerity = 0, group_celerity = 0;
-  double steepness = 0;       // H / L
-  double ursell = 0;          // H L^2 / d^3
-  double relative_depth = 0;  // d / L
+  double steepness = 0;         // H / L
+  double ursell = 0;            // H L^2 / d^3
+  double relative_depth = 0;    // d / L
   double d_gt2 = 0, h_gt2 = 0;  // Le Mehaute's (1976) chart coordinates d / (g T^2), H / (g T^2)
   double breaking_height = 0;   // Miche (1944): 0.142 L tanh(kd)
   double harmonic_ratio = 0;    // a2 / a1 of Stokes' second order

@@ -137,8 +137,8 @@ PaddleSignal regular_paddle(const PaddleGeometry& paddle, double height, double 
   s.components.push_back({0.5 * height / f, omega, phase});
   if (order == 2) {
     const double kd = k * paddle.depth, sh = std::sinh(kd);
-    const double a2 = height * height / (32.0 * paddle.depth) *
-                      (3.0 * std::cosh(kd) / (sh * sh * sh) - 2.0 / f);
+    const double a2 =
+        height * height / (32.0 * paddle.depth) * (3.0 * std::cosh(kd) / (sh * sh * sh) - 2.0 / f);
     s.components.push_back({a2, 2.0 * omega, 2.0 * phase});
   }
   return s;

@@ -22,8 +22,8 @@ namespace swell::waves {
 struct PaddleGeometry {
   enum class Type { Piston, Flap };
   Type type = Type::Piston;
-  double depth = 0.0;          // still-water depth at the paddle [m]
-  double hinge_height = 0.0;   // flap: hinge height above the bed [m] (< depth; may be < 0)
+  double depth = 0.0;         // still-water depth at the paddle [m]
+  double hinge_height = 0.0;  // flap: hinge height above the bed [m] (< depth; may be < 0)
 };
 
 // Biesel transfer function F = H / S for a paddle whose displacement profile over the depth is
