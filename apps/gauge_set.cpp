@@ -33,6 +33,18 @@ const char* kind_comment(GaugeSpec::Kind k) {
 
 }  // namespace
 
+// A height gauge's level (no allocation once the candidate buffer has grown).
+template <int D>
+double height_level(const GaugeSpec& g, const GaugeContext& ctx, const ParticleSet<D>& ps) {
+  const SolverParams& p = ctx.params;
+  const Vec<D> at = g.at.template head<D>();
+  return with_kernel<D>(p.kernel, p.h, [&](const auto& kernel) {
+    if (g.level == GaugeSpec::Level::Integral)
+      return water_height_integral(ps, kernel, at, ctx.up_axis, ctx.line_top, 0.5 * p.dp, p.rho0);
+    return water_height(ps, kernel, at, ctx.up_axis, ctx.line_top, 0.5 * p.dp, p.rho0);
+  });
+}
+
 template <int D>
 std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
                                    const ParticleSet<D>& ps, const std::vector<double>& pressure,
@@ -58,10 +70,7 @@ std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
         return std::vector<double>(v.data(), v.data() + D);
       }
       case GaugeSpec::Kind::Height:
-        if (g.level == GaugeSpec::Level::Integral)
-          return {
-              water_height_integral(ps, kernel, at, ctx.up_axis, ctx.line_top, 0.5 * p.dp, p.rho0)};
-        return {water_height(ps, kernel, at, ctx.up_axis, ctx.line_top, 0.5 * p.dp, p.rho0)};
+        return {height_level<D>(g, ctx, ps)};
       case GaugeSpec::Kind::Front: {
         Vec<D> up = Vec<D>::Zero();
         up[ctx.up_axis] = 1.0;
@@ -109,7 +118,8 @@ GaugeSet<D>::GaugeSet(const std::vector<GaugeSpec>& gauges, double default_every
       e.next = 0.0;
       e.file = file;
       e.first_column = columns.size();
-      averaging_ = averaging_ || (gauges[i].kind == GaugeSpec::Kind::Pressure && gauges[i].size);
+      averaging_ = averaging_ || (gauges[i].kind == GaugeSpec::Kind::Pressure && gauges[i].size) ||
+                   (gauges[i].kind == GaugeSpec::Kind::Height && gauges[i].mean);
       for (auto& c : gauge_columns(gauges[i], D)) columns.push_back(c);
     }
     const std::string path =
@@ -161,6 +171,11 @@ void GaugeSet<D>::accumulate(double dt, const ParticleSet<D>& ps,
   const SolverParams& p = ctx_.params;
   with_kernel<D>(p.kernel, p.h, [&](const auto& kernel) {
     for (auto& e : gauges_) {
+      if (e.spec.kind == GaugeSpec::Kind::Height && e.spec.mean) {  // a mean wave gauge
+        e.acc += dt * height_level<D>(e.spec, ctx_, ps);
+        e.acc_t += dt;
+        continue;
+      }
       if (e.spec.kind != GaugeSpec::Kind::Pressure || !e.spec.size) continue;
       if (e.points.empty()) {  // once: the face's quadrature points
         e.normal = e.spec.normal->template head<D>().normalized();

@@ -43,7 +43,8 @@ class GaugeSet {
   // Samples every gauge whose time has come and writes one row per kind.
   void sample(double time, const ParticleSet<D>& ps, const std::vector<double>& pressure,
               const std::vector<Vec<D>>& ace);
-  // Sensor faces (pressure gauges with a size) are averaged over each sampling interval: call
+  // Sensor faces (pressure gauges with a size) and height gauges with `sampling: mean` are
+  // averaged over each sampling interval: call
   // this after every step with the step's dt (sample() then writes the interval means).
   bool averages() const { return averaging_; }
   void accumulate(double dt, const ParticleSet<D>& ps, const std::vector<double>& pressure);

@@ -28,7 +28,7 @@ const Names kCommonKeys = {"name", "kind", "every"};
 const std::vector<GaugeKindInfo>& gauge_kinds() {
   static const std::vector<GaugeKindInfo> kinds = {
       {"pressure", GaugeSpec::Kind::Pressure, {"at", "normal", "offset", "size"}},
-      {"height", GaugeSpec::Kind::Height, {"at", "level"}},
+      {"height", GaugeSpec::Kind::Height, {"at", "level", "sampling"}},
       {"velocity", GaugeSpec::Kind::Velocity, {"at"}},
       {"force", GaugeSpec::Kind::Force, {"body", "moment_about"}},
       {"front", GaugeSpec::Kind::Front, {"band"}},
@@ -102,6 +102,13 @@ GaugeSpec GaugeReader::read_gauge(const YAML::Node& node, const std::string& pat
                "surface (the first free surface above the start) or integral (the integral of "
                "the water fraction along the line)");
         gauge.level = m == "surface" ? GaugeSpec::Level::Surface : GaugeSpec::Level::Integral;
+      }
+      if (auto v = find(node, "sampling")) {
+        const std::string m = text(*v, child(path, "sampling"));
+        expect(m == "instant" || m == "mean", *v, child(path, "sampling"),
+               "instant (the level at each row's time) or mean (the mean over each interval, "
+               "evaluated every step)");
+        gauge.mean = m == "mean";
       }
       break;
     case GaugeSpec::Kind::Velocity:

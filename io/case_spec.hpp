@@ -68,6 +68,10 @@ struct GaugeSpec {
   // and detached layers count). Both solvers compute both.
   enum class Level { Surface, Integral };
   Level level = Level::Surface;
+  // height: `sampling: mean` evaluates the level after every step and writes the time mean over
+  // each sampling interval (a wave gauge that misses no crest between two rows); `instant`
+  // (the default) writes the level at the row's time.
+  bool mean = false;
   double every = 0.0;  // sampling interval [s]; 0: output.gauge_every
   int line = 0;
 };

@@ -51,11 +51,14 @@ void check_line(const Vec<D>& x_base, int up, double z_top, double dz) {
 }
 
 // The particles with keep(j) whose horizontal distance to the vertical line through x_base is
-// below the support (the candidates of a water-level line; check_line first).
+// below the support (the candidates of a water-level line; check_line first). The list is a
+// per-thread buffer reused by the next call (no allocation once it has grown: wave gauges with
+// `sampling: mean` run this every step); use it before calling again.
 template <int D, class Keep>
-std::vector<std::uint32_t> line_candidates(const ParticleSet<D>& ps, const Vec<D>& x_base, int up,
-                                           double support, Keep&& keep) {
-  std::vector<std::uint32_t> near;
+const std::vector<std::uint32_t>& line_candidates(const ParticleSet<D>& ps, const Vec<D>& x_base,
+                                                  int up, double support, Keep&& keep) {
+  static thread_local std::vector<std::uint32_t> near;
+  near.clear();
   for (std::size_t j = 0; j < ps.size(); ++j) {
     if (!keep(j)) continue;
     double h2 = 0.0;
@@ -207,7 +210,7 @@ double water_height(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_b
   const double threshold = fraction * rho0;
   const double z0 = x_base[up];
   // Fluid particles within one support of the line, horizontally.
-  const std::vector<std::uint32_t> near = gauge_detail::line_candidates(
+  const std::vector<std::uint32_t>& near = gauge_detail::line_candidates(
       ps, x_base, up, support, [&](std::size_t j) { return ps.role[j] == Role::Fluid; });
   auto density_at = [&](double z) {
     Vec<D> x = x_base;
@@ -245,7 +248,7 @@ double water_height_integral(const ParticleSet<D>& ps, const K& kernel, const Ve
                              int up, double z_top, double dz, double rho0) {
   gauge_detail::check_line(x_base, up, z_top, dz);
   const double z0 = x_base[up];
-  const std::vector<std::uint32_t> near = gauge_detail::line_candidates(
+  const std::vector<std::uint32_t>& near = gauge_detail::line_candidates(
       ps, x_base, up, kernel.support(),
       [&](std::size_t j) { return ps.role[j] == Role::Fluid || ps.pos[j][up] < z0; });
   auto fraction_at = [&](double z) {

@@ -197,5 +197,44 @@ TEST(WaveFlume, RegularWaveHeightAndPeriodAtTheFirstGauge) {
   EXPECT_NEAR(period / T, 1.0, 0.01);
 }
 
+// A `sampling: mean` height gauge writes the interval mean of the level: compared with the mean
+// of a finely sampled instant gauge at the same place, in a swaying tank whose surface moves.
+TEST(WaveGauge, MeanSamplingIsTheIntervalMean) {
+  const std::string text = R"(dim: 2
+dp: 0.01
+time: {end: 0.8}
+bodies:
+  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.4, 0.2]}}, layers: 3,
+     open: [ymax], motion: {type: sinusoidal, amplitude: 0.01, period: 0.5, direction: [1, 0]}}
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.4, 0.1]}}}
+gauges:
+  - {name: fine, kind: height, at: [0.05, 0.0], every: 0.002}
+  - {name: mean, kind: height, at: [0.05, 0.0], every: 0.1, sampling: mean}
+output: {every: 0.4, vtk: false}
+)";
+  const fs::path dir = fs::path(SWELL_BINARY_DIR) / "test_out" / "wave_gauge_mean";
+  fs::remove_all(dir);
+  test::run_case_text(text, "mean_gauge.yaml", dir, false, 1);
+  const SeriesTable table = read_series_table((dir / "gauges_height.csv").string());
+  const Series fine = table.series("fine"), mean = table.series("mean");
+  ASSERT_GE(mean.t.size(), 8u);
+  double swing = 0.0, worst = 0.0;
+  for (std::size_t r = 1; r < mean.t.size(); ++r) {
+    const double t0 = mean.t[r - 1], t1 = mean.t[r];
+    double sum = 0.0, lo = 1e9, hi = -1e9;
+    int n = 0;
+    for (std::size_t i = 0; i < fine.t.size(); ++i)
+      if (fine.t[i] > t0 && fine.t[i] <= t1)
+        sum += fine.v[i], ++n, lo = std::min(lo, fine.v[i]), hi = std::max(hi, fine.v[i]);
+    ASSERT_GT(n, 10);
+    swing = std::max(swing, hi - lo);
+    worst = std::max(worst, std::abs(mean.v[r] - sum / n));
+  }
+  // The surface swings by millimetres within an interval; the interval means agree to a few
+  // percent of that swing (the fine gauge is itself sampled every 2 ms).
+  EXPECT_GT(swing, 2e-3);
+  EXPECT_LT(worst, 0.05 * swing) << "swing " << swing;
+}
+
 }  // namespace
 }  // namespace swell
