@@ -56,6 +56,44 @@ struct Timer {
   }
 };
 
+// The damping zones for the run header, one clause each.
+std::string damping_text(const std::vector<DampingZone>& zones, int dim) {
+  if (zones.empty()) return "none";
+  auto point = [dim](const Eigen::Vector3d& x) {
+    std::ostringstream o;
+    o << "(";
+    for (int d = 0; d < dim; ++d) o << (d ? ", " : "") << x[d];
+    return o.str() + ")";
+  };
+  std::ostringstream o;
+  o << zones.size() << (zones.size() == 1 ? " zone" : " zones") << ", v *= exp(-sigma dt): ";
+  for (std::size_t k = 0; k < zones.size(); ++k) {
+    const DampingZone& z = zones[k];
+    const DampingGeometry g = damping_geometry(z, dim);
+    o << (k ? "; " : "") << z.name << " (";
+    if (z.shape == DampingZone::Shape::Plane)
+      o << "plane from " << point(z.at) << " along " << point(g.n) << ", L = " << g.length << " m";
+    else
+      o << "box " << point(z.box_min) << " - " << point(z.box_max) << " along " << point(g.n)
+        << ", L = " << g.length << " m";
+    o << ", sigma = " << z.rate
+      << (z.ramp == DampingRamp::Quadratic ? " s^2" : " (1 - cos(pi s)) / 2") << " 1/s";
+    bool all = true;
+    for (int d = 0; d < dim; ++d) all = all && z.components[static_cast<std::size_t>(d)];
+    if (!all) {
+      o << ", components";
+      for (int d = 0; d < dim; ++d)
+        if (z.components[static_cast<std::size_t>(d)])
+          o << " "
+            << "xyz"[d];
+    }
+    if (z.start > 0.0 || std::isfinite(z.stop))
+      o << ", t in [" << z.start << ", " << z.stop << ") s";
+    o << ")";
+  }
+  return o.str();
+}
+
 template <int D>
 RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const RunSummary& sum) {
   RunMetadata m;
@@ -144,6 +182,14 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     for (const auto& w : b.motion.wave_notes)
       log << "  warning: wavemaker " << b.name << ": " << w << "\n";
   }
+  log << "  damping: " << damping_text(setup.damping, D) << "; settling: ";
+  if (setup.settling)
+    log << "t < " << setup.settling->duration
+        << " s, v *= exp(-sigma dt), sigma = " << setup.settling->rate << " (1 + cos(pi t / "
+        << setup.settling->duration << " s)) / 2 1/s";
+  else
+    log << "none";
+  log << "\n";
   for (const auto& w : setup.warnings) log << "  " << w << "\n";
 
   // Gauge context, before the particles move into the simulation.

@@ -248,8 +248,8 @@ class CaseReader : private NodeReader {
 };
 
 CaseSpec CaseReader::read(const YAML::Node& root) {
-  const Names top_keys = {"name",   "dim",    "dp",     "physics",  "time",  "domain",
-                          "bodies", "gauges", "output", "watchdog", "limits"};
+  const Names top_keys = {"name",   "dim",    "dp",     "physics",  "time",   "domain",
+                          "bodies", "gauges", "output", "watchdog", "limits", "damping"};
   expect(root.IsMap(), root, "case file", "a map with keys " + join(top_keys));
   check_keys(root, "", top_keys);
 
@@ -275,6 +275,7 @@ CaseSpec CaseReader::read(const YAML::Node& root) {
   if (auto node = find(root, "gauges")) {
     spec.gauges = read_gauges(*this, *node, "gauges", spec.bodies);
   }
+  if (auto node = find(root, "damping")) spec.damping = read_damping(*this, *node, "damping");
   if (auto node = find(root, "output")) read_output(*node, "output", spec);
   if (auto node = find(root, "watchdog")) read_watchdog(*node, "watchdog", spec);
   if (auto node = find(root, "limits")) read_limits(*node, "limits", spec);
@@ -421,7 +422,7 @@ void CaseReader::read_density_bounds(const YAML::Node& node, const std::string& 
 }
 
 void CaseReader::read_time(const YAML::Node& node, const std::string& path, CaseSpec& spec) const {
-  expect_map(node, path, {"end", "cfl", "integrator", "verlet_steps"});
+  expect_map(node, path, {"end", "cfl", "integrator", "verlet_steps", "settling"});
   spec.t_end = number_if(
       require(node, path, "end"), child(path, "end"), [](double v) { return v > 0.0; },
       "a number > 0");
@@ -436,6 +437,8 @@ void CaseReader::read_time(const YAML::Node& node, const std::string& path, Case
     spec.verlet_steps = integer(*v, child(path, "verlet_steps"));
     expect(spec.verlet_steps >= 1, *v, child(path, "verlet_steps"), "an integer >= 1");
   }
+  if (auto v = find(node, "settling"))
+    spec.settling = read_settling(*this, *v, child(path, "settling"));
 }
 
 void CaseReader::read_domain(const YAML::Node& node, const std::string& path,

@@ -111,4 +111,11 @@ ShapeSpec read_shape(const NodeReader& reader, const YAML::Node& node, const std
 std::vector<GaugeSpec> read_gauges(const NodeReader& reader, const YAML::Node& node,
                                    const std::string& path, const std::vector<BodySpec>& bodies);
 
+// Reads the top-level `damping` list (io/case_damping.cpp): plane and box zones, checked.
+std::vector<DampingSpec> read_damping(const NodeReader& reader, const YAML::Node& node,
+                                      const std::string& path);
+// Reads `time.settling` (io/case_damping.cpp): {duration: T, rate: sigma_0}.
+SettlingSpec read_settling(const NodeReader& reader, const YAML::Node& node,
+                           const std::string& path);
+
 }  // namespace swell::case_parse

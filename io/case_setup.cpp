@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bc/damping.hpp"
 #include "bc/dbc.hpp"
 #include "bc/mdbc.hpp"
 #include "bc/moving_bodies.hpp"
@@ -390,6 +391,32 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     }
   }
 
+  // Damping zones and settling (checked by the reader): warnings for a zone that holds no
+  // fluid at the start, and for a body that moves while the settling phase damps its waves.
+  for (const DampingSpec& ds : spec.damping) s.damping.push_back(ds.zone);
+  s.settling = spec.settling;
+  for (const DampingSpec& ds : spec.damping) {
+    const DampingGeometry g = damping_geometry(ds.zone, D);
+    bool wet = false;
+    for (std::size_t i = 0; i < s.particles.size() && !wet; ++i)
+      wet = s.particles.role[i] == Role::Fluid && damping_depth<D>(g, s.particles.pos[i]) >= 0.0;
+    if (!wet)
+      s.warnings.push_back("warning: damping zone '" + ds.zone.name + "' (line " +
+                           std::to_string(ds.line) +
+                           ") holds no fluid at the start; check its position and direction");
+  }
+  if (s.settling) {
+    for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+      const MotionSpec& m = spec.bodies[b].motion;
+      if (m.type == MotionSpec::Type::None || m.start >= s.settling->duration) continue;
+      std::ostringstream w;
+      w << "warning: body '" << spec.bodies[b].name << "' (line " << spec.bodies[b].line
+        << ") moves from t = " << m.start << " s, within time.settling (" << s.settling->duration
+        << " s), which damps what it drives; set its motion start >= " << s.settling->duration;
+      s.warnings.push_back(w.str());
+    }
+  }
+
   initialise_hydrostatic(s.particles, p);
 
   // The hydrostatic start must lie inside the density bounds: a fluid particle outside them
@@ -436,6 +463,12 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
     sp.surface_threshold = setup.params.shift_surface_threshold;
     hooks.push_back(std::make_unique<ShiftingHook<D>>(sp));
   }
+  // Damping after shifting. Shifting moves positions and damping changes velocities, so neither
+  // undoes the other; in this order shifting's |v| dt is the velocity the step moved the
+  // particles with, the zones damp at the positions the step ends at, and nothing in the step
+  // changes a velocity after the damping.
+  if (!setup.damping.empty()) hooks.push_back(std::make_unique<DampingZones<D>>(setup.damping));
+  if (setup.settling) hooks.push_back(std::make_unique<Settling<D>>(*setup.settling));
   std::unique_ptr<BoundaryModel<D>> wall =
       setup.params.boundary == BoundaryType::Mdbc
           ? make_mdbc<D>(setup.params.mdbc_slip, setup.params.mdbc_det_min)

@@ -4,9 +4,11 @@
 // lean benchmark runner (bench/), which must not depend on apps/.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bc/damping.hpp"
 #include "bc/motion.hpp"
 #include "geometry/lattice_fill.hpp"
 #include "geometry/mesh_solid.hpp"
@@ -34,6 +36,9 @@ struct CaseSetup {
   // the lattice volume check, every mesh loaded (faces, orientation, repairs), and the time
   // spent building shapes and filling the lattice.
   std::vector<MotionLaw> motions;  // per body (index = body id); none for fluid and fixed walls
+  // Damping zones (case order) and the settling phase, for the hooks of bc/damping.hpp.
+  std::vector<DampingZone> damping;
+  std::optional<SettlingSpec> settling;
   std::vector<geometry::BodyFillReport> fill;
   std::vector<geometry::MeshReport> meshes;
   double fill_seconds = 0.0;
@@ -57,8 +62,9 @@ double available_memory_bytes();
 template <int D>
 CaseSetup<D> setup_case(const CaseSpec& spec);
 
-// The simulation of a set-up case: DBC walls and, if a body moves, the motion hook. `particles`
-// are the setup's (fresh start) or a checkpoint's (restart).
+// The simulation of a set-up case: its wall model (DBC or mDBC) and step hooks, in this order:
+// moving bodies (prescribe), shifting, damping zones, settling (all three after_integration).
+// `particles` are the setup's (fresh start) or a checkpoint's (restart).
 template <int D>
 Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particles);
 

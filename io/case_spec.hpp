@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bc/damping.hpp"
 #include "bc/motion.hpp"
 #include "geometry/shape_spec.hpp"
 #include "solver/diagnostics.hpp"
@@ -93,6 +94,12 @@ inline const char* gauge_kind_name(GaugeSpec::Kind k) {
   return "gauge";
 }
 
+// A damping zone (bc/damping.hpp) and where the case file gave it.
+struct DampingSpec {
+  DampingZone zone;
+  int line = 0;
+};
+
 struct CaseSpec {
   std::string file;  // path of the case file, for messages
   std::string text;  // the case file as read, kept for metadata
@@ -129,12 +136,15 @@ struct CaseSpec {
   double cfl = 0.2;
   IntegratorType integrator = IntegratorType::Symplectic;  // symplectic | verlet
   int verlet_steps = 40;
+  // time.settling: velocities relaxed over [0, duration) (bc/damping.hpp); none by default.
+  std::optional<SettlingSpec> settling;
 
   // domain: particles leaving it are excluded. Default: boundary bounding box + margin.
   std::optional<Eigen::Vector3d> domain_min, domain_max;
 
   std::vector<BodySpec> bodies;
   std::vector<GaugeSpec> gauges;
+  std::vector<DampingSpec> damping;  // `damping:` zones, in case order
 
   // output
   double output_every = 0.0;  // 0: only the initial and final states

@@ -122,6 +122,13 @@ INSTANTIATE_TEST_SUITE_P(
                 {"gauge_outside.yaml:10:", "gauges[0] 'P9'", "outside the domain"}},
         BadCase{"gravity_zero.yaml", 2, {"gravity_zero.yaml:4:", "physics.gravity", "non-zero"}},
         BadCase{"coefh_absurd.yaml", 2, {"coefh_absurd.yaml:4:", "physics.coefh", "[0.5, 4]"}},
+        // damping zones and settling (bc/damping.hpp): a zero direction, a zero rate
+        BadCase{"damping_zero_direction.yaml",
+                2,
+                {"damping_zero_direction.yaml:9:", "damping[0].plane.direction", "non-zero"}},
+        BadCase{"settling_rate_zero.yaml",
+                2,
+                {"settling_rate_zero.yaml:4:", "time.settling.rate", "a number > 0"}},
         BadCase{"warnings.yaml",
                 0,
                 {"warning: body 'water' (line 8): fill level 0.5 m lies above the top of 'tank'",

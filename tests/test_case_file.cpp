@@ -1499,5 +1499,55 @@ TEST(CaseFileGaugeErrors, InvalidIntervalsAndBand) {
                               {"gauges[0].band", "expected a number > 0"}));
 }
 
+// ---------------------------------------------------------------------------------------------
+// Damping zones and settling (bc/damping.hpp; more in tests/test_damping.cpp)
+
+TEST(CaseFileDamping, ParsesZonesAndSettlingIn3d) {
+  const CaseSpec spec = parse_case_text(R"(dim: 3
+dp: 0.02
+time: {end: 2, settling: {duration: 0.5, rate: 4}}
+bodies:
+  - {name: water, kind: fluid, shape: {box: {min: [0, 0, 0], max: [1, 1, 1]}}}
+damping:
+  - name: outlet
+    plane: {at: [0.5, 0, 0], direction: [1, 0, 0]}
+    length: 0.5
+    components: [x, z]
+  - {name: side, box: {min: [0, 0, 0], max: [1, 0.2, 1]}, direction: [0, -1, 0], ramp: cosine}
+)",
+                                        kLabel);
+  ASSERT_TRUE(spec.settling);
+  EXPECT_EQ(spec.settling->duration, 0.5);
+  EXPECT_EQ(spec.settling->rate, 4.0);
+  ASSERT_EQ(spec.damping.size(), 2u);
+  EXPECT_EQ(spec.damping[0].line, 7);
+  EXPECT_EQ(spec.damping[0].zone.at, Eigen::Vector3d(0.5, 0, 0));
+  EXPECT_EQ(spec.damping[0].zone.components, (std::array<bool, 3>{true, false, true}));
+  EXPECT_EQ(spec.damping[1].line, 11);
+  EXPECT_EQ(spec.damping[1].zone.box_max, Eigen::Vector3d(1, 0.2, 1));
+  EXPECT_EQ(spec.damping[1].zone.ramp, DampingRamp::Cosine);
+}
+
+TEST(CaseFileDampingErrors, LineKeyAndExpectation) {
+  const std::string head = std::string(kMinimal2d) + "damping:\n";  // zones start on line 7
+  EXPECT_TRUE(
+      ThrowsCaseError(head + "  - {name: a, plane: {at: [1, 0], direction: [0, 0]}, length: 1}\n",
+                      7, {"damping[0].plane.direction: expected a non-zero vector", "got [0, 0]"}));
+  EXPECT_TRUE(ThrowsCaseError(head + "  - name: a\n    plane: {at: [1, 0], direction: [1, 0]}\n"
+                                     "    length: -2\n",
+                              9, {"damping[0].length: expected a number > 0", "got '-2'"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      head + "  - {name: a, plane: {at: [1, 0], direction: [1, 0]}, length: 1, rate: 0}\n", 7,
+      {"damping[0].rate: expected a number > 0"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      head + "  - {name: a, plane: {at: [1, 0], direction: [1, 0, 0]}, length: 1}\n", 7,
+      {"damping[0].plane.direction: expected a list of 2 numbers"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      head + "  - {name: a, plane: {at: [1, 0], direction: [1, 0]}, length: 1, width: 1}\n", 7,
+      {"unknown key 'damping[0].width'", "allowed keys in damping[0] for a plane zone"}));
+  EXPECT_TRUE(ThrowsCaseError("dim: 2\ndp: 0.01\ntime: {end: 1, settling: {duration: -1}}\n", 3,
+                              {"time.settling.duration: expected a number > 0"}));
+}
+
 }  // namespace
 }  // namespace swell
