@@ -19,6 +19,7 @@
 #include "apps/case_runner.hpp"
 #include "apps/gauge_set.hpp"
 #include "apps/stop_signals.hpp"
+#include "bc/absorption.hpp"
 #include "io/case_identity.hpp"
 #include "io/gauge_csv.hpp"
 #include "io/hdf5_file.hpp"
@@ -181,6 +182,16 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
     log << "  wavemaker " << b.name << ": " << b.motion.wave_label << "\n";
     for (const auto& w : b.motion.wave_notes)
       log << "  warning: wavemaker " << b.name << ": " << w << "\n";
+    if (b.motion.absorption) {
+      const PaddleAbsorber a(b.motion);
+      const auto& ab = *b.motion.absorption;
+      log << "  absorption " << b.name << ": U_c = G (eta_T - eta_M), G = "
+          << (ab.gain == MotionSpec::Absorption::Gain::Tuned ? "w_p / F(k_p d)" : "sqrt(g / d)")
+          << " = " << a.gain() << " 1/s; eta_M on the line "
+          << (ab.distance ? std::to_string(*ab.distance) + " m" : std::string("one support"))
+          << " in front of the face, low-pass " << a.filter_time() << " s, drift " << a.drift_time()
+          << " s\n";
+    }
   }
   log << "  damping: " << damping_text(setup.damping, D) << "; settling: ";
   if (setup.settling)

@@ -79,6 +79,18 @@ struct MotionSpec {
   std::string wave_label{};
   std::vector<std::string> wave_notes{};  // validity warnings (waves/theory.hpp)
 
+  // Wave, piston only: active absorption (bc/absorption.hpp), read from `absorption:`.
+  struct Absorption {
+    enum class Gain { Tuned, Shallow };
+    Gain gain = Gain::Tuned;
+    std::optional<double> distance{};  // paddle face to the measuring line [m]; default support
+    std::optional<double> filter{};    // low-pass time constant [s]; default 0.02 T_ref
+    std::optional<double> drift{};     // drift time constant [s]; default 10 T_ref
+  };
+  std::optional<Absorption> absorption{};
+  double bed = 0.0;  // Wave: bed elevation at the paddle [m] (still-water level = bed + depth)
+  double g = 9.81;   // Wave: |gravity| [m/s^2]
+
   double start = 0.0;                                     // [s]
   double stop = std::numeric_limits<double>::infinity();  // [s], > start
   double ramp = 0.0;                                      // [s], >= 0

@@ -10,10 +10,12 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "bc/absorption.hpp"
 #include "bc/motion.hpp"
 #include "solver/state/particle_set.hpp"
 #include "solver/time/step_hooks.hpp"
@@ -25,7 +27,32 @@ class MovingBodies final : public StepHook<D> {
  public:
   // laws[b]: the motion of body b (body id = index; a default MotionLaw does not move).
   explicit MovingBodies(std::vector<MotionLaw> laws)
-      : laws_(std::move(laws)), poses_(laws_.size()), placements_(laws_.size()) {}
+      : laws_(std::move(laws)),
+        poses_(laws_.size()),
+        placements_(laws_.size()),
+        absorbers_(laws_.size()) {
+    for (std::size_t b = 0; b < laws_.size(); ++b) {
+      const MotionSpec& spec = laws_[b].spec();
+      if (spec.type != MotionSpec::Type::Wave || !spec.absorption) continue;
+      absorbers_[b].emplace(spec);
+      absorbers_[b]->body_ = b;
+    }
+  }
+
+  // The absorber of body b (bc/absorption.hpp), or null.
+  const PaddleAbsorber* absorber(std::size_t b) const {
+    return b < absorbers_.size() && absorbers_[b] ? &*absorbers_[b] : nullptr;
+  }
+
+  // Active absorption: the paddles measure the water in front of them once per step.
+  void after_integration(StepState<D>& s) override {
+    for (std::size_t b = 0; b < absorbers_.size(); ++b) {
+      if (!absorbers_[b]) continue;
+      const RigidPose law = laws_[b].pose(s.time);
+      absorbers_[b]->update(s.particles, s.params, s.time, s.dt,
+                            law.d.dot(laws_[b].spec().direction));
+    }
+  }
 
   std::string name() const override { return "motion"; }
   const std::vector<MotionLaw>& laws() const { return laws_; }
@@ -60,6 +87,7 @@ class MovingBodies final : public StepHook<D> {
       const std::string k = "body" + std::to_string(b) + ".";
       for (int d = 0; d < 3; ++d) out[k + "d" + std::to_string(d)] = poses_[b].d[d];
       out[k + "theta"] = poses_[b].theta;
+      if (absorbers_[b]) absorbers_[b]->save(out, k);
     }
   }
 
@@ -77,8 +105,12 @@ class MovingBodies final : public StepHook<D> {
     t_last_ = t->second;
     for (std::size_t b = 0; b < laws_.size(); ++b) {
       if (!laws_[b].moves()) continue;
-      poses_[b] = laws_[b].pose(t_last_);
       const std::string k = "body" + std::to_string(b) + ".";
+      if (absorbers_[b] && !absorbers_[b]->restore(in, k))
+        throw std::invalid_argument("checkpoint: no absorption state for body " +
+                                    std::to_string(b) +
+                                    ", whose paddle absorbs in the case (the case was changed)");
+      poses_[b] = pose_at(b, t_last_);
       auto saved = [&](const std::string& key) {
         const auto it = in.find(k + key);
         if (it == in.end())
@@ -101,7 +133,7 @@ class MovingBodies final : public StepHook<D> {
   void place_all(ParticleSet<D>& ps, double t) {
     for (std::size_t b = 0; b < laws_.size(); ++b) {
       if (!laws_[b].moves()) continue;
-      poses_[b] = laws_[b].pose(t);
+      poses_[b] = pose_at(b, t);
       placements_[b] = laws_[b].placement(poses_[b]);
     }
     t_last_ = t;
@@ -124,9 +156,21 @@ class MovingBodies final : public StepHook<D> {
     }
   }
 
+  // The law's pose plus, for an absorbing paddle, its correction along `direction`.
+  RigidPose pose_at(std::size_t b, double t) const {
+    RigidPose p = laws_[b].pose(t);
+    if (absorbers_[b]) {
+      const Eigen::Vector3d& dir = laws_[b].spec().direction;
+      p.d += absorbers_[b]->offset(t) * dir;
+      p.dv += absorbers_[b]->velocity() * dir;
+    }
+    return p;
+  }
+
   std::vector<MotionLaw> laws_;
   std::vector<RigidPose> poses_;
   std::vector<RigidPlacement> placements_;
+  std::vector<std::optional<PaddleAbsorber>> absorbers_;
   double t_last_ = 0.0;
 };
 

@@ -55,7 +55,7 @@ const std::vector<MotionTypeInfo>& motion_types() {
        {"paddle",    "wave",           "depth",      "direction", "hinge", "bed",
         "height",    "period",         "order",      "phase",     "hs",    "tp",
         "gamma",     "spectrum",       "components", "seed",      "f_min", "f_max",
-        "amplitude", "focus_distance", "focus_time"}},
+        "amplitude", "focus_distance", "focus_time", "absorption"}},
   };
   return types;
 }
@@ -79,6 +79,8 @@ class MotionReader : private NodeReader {
                      double amplitude_unit) const;
   void read_rotation(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
   void read_file(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
+  void read_absorption(const YAML::Node& node, const std::string& path, const std::string& kind,
+                       MotionSpec& spec) const;
   void read_wave(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
   void read_pivot(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
   void read_direction(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
@@ -261,8 +263,9 @@ void MotionReader::read_file(const YAML::Node& node, const std::string& path,
 // A wavemaker: the paddle, the wave and its parameters (SI; phase in degrees).
 //   every wave:  paddle (piston | flap, default piston), wave (regular | solitary | focused |
 //                irregular), depth (still-water depth at the paddle, m), direction (of the
-//                waves, default +x); flap: hinge (the hinge point) and bed (vertical coordinate
-//                of the bed, default 0; the vertical is the last axis)
+//                waves, default +x), bed (vertical coordinate of the bed, default 0; the
+//                vertical is the last axis); flap: hinge (the hinge point); piston:
+//                absorption (active absorption, read_absorption)
 //   regular:     height, period, order (1 | 2, default 1), phase (deg, default 0)
 //   solitary:    height (piston only; no ramp)
 //   irregular:   hs, tp, spectrum (jonswap | pm, default jonswap), gamma (3.3), components
@@ -318,10 +321,12 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
                                        ": waves travel horizontally; the direction must have no "
                                        "vertical (last) component");
   }
+  double bed = 0.0;
+  if (auto v = find(node, "bed")) bed = number(*v, child(path, "bed"));
+  spec.bed = bed;
+  spec.g = g_;
   if (flap) {
     spec.centre = vector(require(node, path, "hinge"), child(path, "hinge"));
-    double bed = 0.0;
-    if (auto v = find(node, "bed")) bed = number(*v, child(path, "bed"));
     paddle.hinge_height = spec.centre[up] - bed;
     if (!(paddle.hinge_height < paddle.depth)) {
       fail(require(node, path, "hinge"),
@@ -333,9 +338,14 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
     upv[up] = 1.0;
     spec.axis = upv.cross(spec.direction).normalized();
   } else {
-    for (const char* key : {"hinge", "bed"})
-      if (auto v = find(node, key))
-        fail(*v, child(path, key) + ": '" + key + "' is for a flap paddle (paddle: flap)");
+    if (auto v = find(node, "hinge"))
+      fail(*v, child(path, "hinge") + ": 'hinge' is for a flap paddle (paddle: flap)");
+  }
+  if (auto v = find(node, "absorption")) {
+    if (flap)
+      fail(*v, child(path, "absorption") +
+                   ": active absorption is implemented for pistons only (paddle: piston)");
+    read_absorption(*v, child(path, "absorption"), kind, spec);
   }
 
   std::ostringstream label;
@@ -424,6 +434,44 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
   if (!find(node, "ramp") && period_for_ramp > 0.0) spec.ramp = 2.0 * period_for_ramp;
   label << ", ramp " << spec.ramp << " s";
   spec.wave_label = label.str();
+}
+
+// absorption: true | false | {gain: tuned | shallow, distance: m, filter: s, drift: s}
+// (bc/absorption.hpp). A solitary wave has no frequency to tune to: its gain is shallow.
+void MotionReader::read_absorption(const YAML::Node& node, const std::string& path,
+                                   const std::string& kind, MotionSpec& spec) const {
+  MotionSpec::Absorption a;
+  if (kind == "solitary") a.gain = MotionSpec::Absorption::Gain::Shallow;
+  if (node.IsScalar()) {
+    if (!boolean(node, path)) return;
+    spec.absorption = a;
+    return;
+  }
+  if (!node.IsMap())
+    fail(node, path + ": expected true, false or a map {gain, distance, filter, drift}, got " +
+                   describe(node));
+  for (const auto& entry : node) {
+    const std::string key = entry.first.Scalar();
+    if (key != "gain" && key != "distance" && key != "filter" && key != "drift")
+      fail(entry.first, child(path, key) + ": unknown key; absorption takes gain (tuned | " +
+                            "shallow), distance (m), filter (s) and drift (s)");
+  }
+  const auto positive = [](double v) { return v > 0.0; };
+  if (auto v = find(node, "gain")) {
+    const std::string g = choice(*v, child(path, "gain"), {"tuned", "shallow"});
+    if (g == "tuned" && kind == "solitary")
+      fail(*v, child(path, "gain") + ": a solitary wave has no period to tune to; use shallow");
+    a.gain =
+        g == "tuned" ? MotionSpec::Absorption::Gain::Tuned : MotionSpec::Absorption::Gain::Shallow;
+  }
+  if (auto v = find(node, "distance"))
+    a.distance = number_if(*v, child(path, "distance"), positive, "a distance > 0 m");
+  if (auto v = find(node, "filter"))
+    a.filter = number_if(
+        *v, child(path, "filter"), [](double x) { return x >= 0.0; }, "a time >= 0 s");
+  if (auto v = find(node, "drift"))
+    a.drift = number_if(*v, child(path, "drift"), positive, "a time > 0 s");
+  spec.absorption = a;
 }
 
 // centre (required) and axis (optional, always 3 numbers; z in 2D) of a rotation.

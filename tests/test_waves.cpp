@@ -3,8 +3,10 @@
 // independent computation or a limit that theory fixes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "waves/dispersion.hpp"
 #include "waves/spectrum.hpp"
@@ -141,6 +143,38 @@ TEST(WavePaddle, GoringSolitaryTrajectory) {
   }
   EXPECT_NEAR(s.velocity(mid), p.celerity * H / (d + H), 1e-12);
   EXPECT_THROW(solitary_paddle({PaddleGeometry::Type::Flap, d, 0.0}, H), std::invalid_argument);
+}
+
+// The target elevation a paddle signal carries (for active absorption): the second-order regular
+// wave is Stokes' wave of waves/theory.hpp, a linear signal is its own surface components, and
+// the solitary target is the wave Goring's paddle follows: dX/dt = c eta / (d + eta) at X(t).
+TEST(WavePaddle, TargetElevation) {
+  const PaddleGeometry piston{PaddleGeometry::Type::Piston, 0.4, 0.0};
+  const PaddleSignal reg = regular_paddle(piston, 0.06, 1.3, 2, 0.0, g);
+  for (double t : {0.0, 0.37, 1.1, 2.9})
+    for (double x : {0.0, 0.25, 1.7})
+      EXPECT_NEAR(reg.elevation(t, x), stokes2_elevation(0.06, 1.3, 0.4, x, t, 0.0, g), 1e-12);
+  EXPECT_NEAR(reg.peak_omega(), 2 * kPi / 1.3, 1e-12);
+
+  const std::vector<SurfaceComponent> surface = {{0.02, 4.0, 0.3}, {0.01, 6.5, -1.2}};
+  const PaddleSignal lin = linear_paddle(piston, surface, g);
+  for (double t : {0.0, 0.8, 3.3}) {
+    EXPECT_NEAR(lin.elevation(t, 0.0),
+                0.02 * std::cos(4.0 * t + 0.3) + 0.01 * std::cos(6.5 * t - 1.2), 1e-14);
+    EXPECT_NEAR(lin.elevation(t, 1.3), linear_elevation(surface, 0.4, 1.3, t, g), 1e-12);
+  }
+  EXPECT_DOUBLE_EQ(lin.peak_omega(), 4.0);
+
+  const PaddleSignal sol = solitary_paddle(piston, 0.08, g);
+  const double c = sol.soliton.celerity, d = 0.4;
+  double peak = 0.0;
+  for (double t = 0.05; t < sol.soliton.duration; t += 0.05) {
+    const double x = sol.displacement(t), eta = sol.elevation(t, x);
+    EXPECT_NEAR(sol.velocity(t), c * eta / (d + eta), 1e-9 * c) << "t = " << t;
+    peak = std::max(peak, eta);
+  }
+  EXPECT_NEAR(peak, 0.08, 1e-3);
+  EXPECT_EQ(sol.peak_omega(), 0.0);
 }
 
 TEST(WaveSpectrum, ShapeAndIrregularSea) {

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "waves/theory.hpp"
+
 namespace swell::waves {
 
 namespace {
@@ -118,6 +120,34 @@ double PaddleSignal::amplitude_bound() const {
   return a;
 }
 
+double PaddleSignal::elevation(double t, double x) const {
+  if (solitary) {
+    // Goring's trajectory is centred: the crest is at xi = c tau, tau = t - duration / 2, and a
+    // point x from the paddle's rest position is at xi = x + start.
+    const double u =
+        soliton.kappa * (soliton.celerity * (t - 0.5 * soliton.duration) - (x + soliton.start));
+    const double sech = 1.0 / std::cosh(u);
+    return soliton.height * sech * sech;
+  }
+  double eta = 0.0;
+  for (const auto& c : target) eta += c.amplitude * std::cos(c.omega * t + c.phase - c.k * x);
+  if (bound_second_harmonic != 0.0 && !target.empty()) {
+    const auto& c = target.front();
+    eta += bound_second_harmonic * std::cos(2.0 * (c.omega * t + c.phase - c.k * x));
+  }
+  return eta;
+}
+
+double PaddleSignal::peak_omega() const {
+  double best = 0.0, omega = 0.0;
+  for (const auto& c : target)
+    if (std::abs(c.amplitude) > best) {
+      best = std::abs(c.amplitude);
+      omega = c.omega;
+    }
+  return omega;
+}
+
 PaddleSignal regular_paddle(const PaddleGeometry& paddle, double height, double period, int order,
                             double phase, double g) {
   if (!(height > 0.0) || !(period > 0.0))
@@ -135,7 +165,9 @@ PaddleSignal regular_paddle(const PaddleGeometry& paddle, double height, double 
   PaddleSignal s;
   s.paddle = paddle;
   s.components.push_back({0.5 * height / f, omega, phase});
+  s.target.push_back({0.5 * height, omega, phase, k});
   if (order == 2) {
+    s.bound_second_harmonic = 0.5 * height * stokes2_harmonic_ratio(k, paddle.depth, height);
     const double kd = k * paddle.depth, sh = std::sinh(kd);
     const double a2 =
         height * height / (32.0 * paddle.depth) * (3.0 * std::cosh(kd) / (sh * sh * sh) - 2.0 / f);
@@ -164,6 +196,7 @@ PaddleSignal linear_paddle(const PaddleGeometry& paddle,
       throw std::invalid_argument("wave component: angular frequency must be > 0");
     const double k = wave_number(c.omega, paddle.depth, g);
     s.components.push_back({c.amplitude / transfer_function(paddle, k), c.omega, c.phase});
+    s.target.push_back({c.amplitude, c.omega, c.phase, k});
   }
   return s;
 }

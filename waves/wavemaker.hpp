@@ -65,8 +65,23 @@ struct PaddleSignal {
   bool solitary = false;
   SolitaryPaddle soliton;
 
+  // The wave the signal is meant to make, for active absorption (bc/absorption.hpp) and checks:
+  // free linear components eta = a cos(w t + phi - k x) and, for a second-order regular wave,
+  // Stokes' bound second harmonic a2 cos(2 (w t + phi - k x)); a solitary signal uses its
+  // soliton. Filled by regular_paddle, solitary_paddle and linear_paddle.
+  struct TargetComponent {
+    double amplitude = 0.0, omega = 0.0, phase = 0.0, k = 0.0;
+  };
+  std::vector<TargetComponent> target;
+  double bound_second_harmonic = 0.0;  // a2 [m] (regular order 2), else 0
+
   double displacement(double t) const;
   double velocity(double t) const;
+  // Target surface elevation at distance x [m] from the paddle's rest position, time t
+  // (unramped; no evanescent near field). No allocation.
+  double elevation(double t, double x) const;
+  // The angular frequency of the largest target component (0 for a solitary wave).
+  double peak_omega() const;
   // The shortest period among the components (the solitary duration), for sampling.
   double shortest_period() const;
   // Largest |X| over the signal, bounded by the sum of amplitudes (or the solitary stroke).
