@@ -18,6 +18,7 @@
 #include "apps/stop_signals.hpp"
 #include "apps/validate_command.hpp"
 #include "apps/wave_analysis_command.hpp"
+#include "apps/wave_predict_command.hpp"
 #include "apps/waves_command.hpp"
 #include "io/case_file.hpp"
 #include "io/hdf5_file.hpp"
@@ -191,6 +192,7 @@ int main(int argc, char** argv) {
       "waves", "wave theory (swell waves H T d [--paddle flap --hinge l]) and analysis (analyse)");
   waves->require_subcommand(0, 1);
   const swell::WavesAnalyseCommand waves_analyse = swell::add_waves_analyse_command(*waves);
+  const swell::WavesPredictCommand waves_predict = swell::add_waves_predict_command(*waves);
   auto* waves_h = waves->add_option("H", waves_opt.height, "wave height [m]")->check(kPositive);
   waves->add_option("T", waves_opt.period, "wave period [s]")->check(kPositive);
   waves->add_option("d", waves_opt.depth, "still-water depth [m]")->check(kPositive);
@@ -303,6 +305,8 @@ int main(int argc, char** argv) {
       swell::run_foam_command(spec, foam_opt, std::cout);
     } else if (waves_analyse.chosen()) {  // swell waves analyse
       waves_analyse.run(std::cout);
+    } else if (waves_predict.chosen()) {  // swell waves predict
+      waves_predict.run(std::cout);
     }
   } catch (const swell::Interrupted& e) {
     std::cerr << "swell: " << e.what() << "\n";

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <vector>
 
 namespace swell {
 
@@ -88,7 +89,80 @@ bool parse_row(std::string_view line, double& t, double& value) {
 // ---------------------------------------------------------------------------------------------
 // CSV time series
 
-MotionSeries load_motion_csv(const std::string& path, MotionSpec::Quantity quantity) {
+namespace {
+
+// The comma-separated fields of a line, trimmed.
+std::vector<std::string_view> fields_of(std::string_view line) {
+  std::vector<std::string_view> out;
+  for (std::size_t start = 0;;) {
+    const auto comma = line.find(',', start);
+    out.push_back(
+        trim(line.substr(start, comma == std::string_view::npos ? comma : comma - start)));
+    if (comma == std::string_view::npos) return out;
+    start = comma + 1;
+  }
+}
+
+// load_motion_csv with a named value column (t is the first column).
+MotionSeries load_motion_column(const std::string& path, MotionSpec::Quantity quantity,
+                                const std::string& column) {
+  std::ifstream in(path);
+  if (!in) {
+    throw std::invalid_argument(path + ": cannot open the motion time series for reading");
+  }
+  const double scale = quantity == MotionSpec::Quantity::Angle ? std::numbers::pi / 180.0 : 1.0;
+  MotionSeries series;
+  std::string raw;
+  int line_no = 0;
+  std::size_t index = 0;
+  bool header_seen = false;
+  while (std::getline(in, raw)) {
+    ++line_no;
+    const std::string_view line = trim(raw);
+    if (line.empty() || line.front() == '#') continue;
+    const std::vector<std::string_view> fields = fields_of(line);
+    const std::string where = path + ":" + std::to_string(line_no) + ": ";
+    if (!header_seen) {
+      header_seen = true;
+      const auto it = std::find(fields.begin(), fields.end(), std::string_view(column));
+      if (it == fields.begin() || it == fields.end()) {
+        std::string names;
+        for (std::size_t i = 1; i < fields.size(); ++i)
+          names += (i > 1 ? ", " : "") + std::string(fields[i]);
+        throw std::invalid_argument(where + "no value column '" + column +
+                                    "' in the header (the first column is the time; the others "
+                                    "are: " +
+                                    names + ")");
+      }
+      index = static_cast<std::size_t>(it - fields.begin());
+      continue;
+    }
+    double t = 0.0, value = 0.0;
+    if (fields.size() <= index || !parse_number(fields[0], t) ||
+        !parse_number(fields[index], value)) {
+      throw std::invalid_argument(where + "expected numbers in column 1 (t) and column " +
+                                  std::to_string(index + 1) + " (" + column + ")");
+    }
+    if (!series.t.empty() && !(t > series.t.back())) {
+      throw std::invalid_argument(where +
+                                  "times must increase strictly, but t = " + format_number(t) +
+                                  " follows t = " + format_number(series.t.back()));
+    }
+    series.t.push_back(t);
+    series.value.push_back(value * scale);
+  }
+  if (in.bad()) throw std::invalid_argument(path + ": error while reading the file");
+  if (series.t.size() < 2) {
+    throw std::invalid_argument(path + ": expected at least 2 data rows after the header, found " +
+                                std::to_string(series.t.size()));
+  }
+  return series;
+}
+}  // namespace
+
+MotionSeries load_motion_csv(const std::string& path, MotionSpec::Quantity quantity,
+                             const std::string& column) {
+  if (!column.empty()) return load_motion_column(path, quantity, column);
   std::ifstream in(path);
   if (!in) {
     throw std::invalid_argument(path + ": cannot open the motion time series for reading");

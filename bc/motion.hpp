@@ -129,7 +129,11 @@ struct MotionSeries {
 // every further line holds two comma-separated numbers t, value, with t strictly increasing and
 // at least 2 rows. An Angle is given in degrees in the file and returned in radians. Throws
 // std::invalid_argument("<path>:<line>: <what was expected>") on any problem.
-MotionSeries load_motion_csv(const std::string& path, MotionSpec::Quantity quantity);
+// With a `column` name, the header is required and names the columns: t is the first column and
+// the value the named one, so a measured record with more columns (probes, velocities) is read
+// as it is; rows need at least as many comma-separated numbers as the value's column number.
+MotionSeries load_motion_csv(const std::string& path, MotionSpec::Quantity quantity,
+                             const std::string& column = "");
 
 class MotionLaw {
  public:

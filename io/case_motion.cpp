@@ -49,7 +49,9 @@ const std::vector<MotionTypeInfo>& motion_types() {
       {"rotation",
        MotionSpec::Type::Rotation,
        {"centre", "axis", "rate", "amplitude", "period", "phase"}},
-      {"file", MotionSpec::Type::File, {"file", "quantity", "direction", "centre", "axis"}},
+      {"file",
+       MotionSpec::Type::File,
+       {"file", "column", "quantity", "direction", "centre", "axis"}},
       {"wave",
        MotionSpec::Type::Wave,
        {"paddle",    "wave",           "depth",      "direction", "hinge", "bed",
@@ -252,7 +254,9 @@ void MotionReader::read_file(const YAML::Node& node, const std::string& path,
     resolved = std::filesystem::path(case_dir_) / resolved;
   spec.file = resolved.string();
   try {
-    MotionSeries series = load_motion_csv(spec.file, spec.quantity);
+    std::string column;
+    if (auto v = find(node, "column")) column = name(*v, child(path, "column"));
+    MotionSeries series = load_motion_csv(spec.file, spec.quantity, column);
     spec.series_t = std::move(series.t);
     spec.series_value = std::move(series.value);
   } catch (const std::invalid_argument& e) {

@@ -454,6 +454,34 @@ TEST(MotionTable, CsvFormat) {
 #endif
 }
 
+// `column:` picks the value column of a wider record by its header name (t is the first).
+TEST(MotionTable, NamedColumnOfAWiderRecord) {
+  const fs::path wide = write_file(
+      "wide.csv", "# rec\nt_s, x_m, u_mps, eta\n0, 0.0, 9, 1\n0.5, 0.25, 9, 2\n1, 1, 9, 3\n");
+  const MotionSeries s = load_motion_csv(wide.string(), MotionSpec::Quantity::Displacement, "x_m");
+  EXPECT_EQ(s.t, (std::vector<double>{0.0, 0.5, 1.0}));
+  EXPECT_EQ(s.value, (std::vector<double>{0.0, 0.25, 1.0}));
+  const MotionSeries e = load_motion_csv(wide.string(), MotionSpec::Quantity::Angle, "eta");
+  EXPECT_DOUBLE_EQ(e.value[2], 3.0 * kDeg);
+  const auto message = [&](const fs::path& f, const std::string& column) -> std::string {
+    try {
+      load_motion_csv(f.string(), MotionSpec::Quantity::Displacement, column);
+    } catch (const std::invalid_argument& err) {
+      return err.what();
+    }
+    return "no error";
+  };
+  EXPECT_NE(message(wide, "x").find("wide.csv:2: no value column 'x' in the header"),
+            std::string::npos);
+  EXPECT_NE(message(wide, "x").find("x_m, u_mps, eta"), std::string::npos);
+  EXPECT_NE(message(wide, "t_s").find("no value column"), std::string::npos);  // t is not a value
+  const fs::path short_row = write_file("short.csv", "t,a,b\n0,1,2\n1,1\n");
+  EXPECT_NE(message(short_row, "b")
+                .find("short.csv:3: expected numbers in column 1 (t) and "
+                      "column 3 (b)"),
+            std::string::npos);
+}
+
 TEST(MotionTable, CsvErrorsNameFileAndLine) {
   struct Bad {
     std::string text;
