@@ -14,6 +14,7 @@
 #include "apps/case_runner.hpp"
 #include "apps/fill_command.hpp"
 #include "apps/foam_command.hpp"
+#include "apps/goda_command.hpp"
 #include "apps/probe_command.hpp"
 #include "apps/stop_signals.hpp"
 #include "apps/validate_command.hpp"
@@ -189,10 +190,13 @@ int main(int argc, char** argv) {
   // `swell waves H T d`: regular-wave theory and paddle stroke (apps/waves_command); its
   // subcommand `analyse` (apps/wave_analysis_command) runs in the dispatch below.
   auto* waves = app.add_subcommand(
-      "waves", "wave theory (swell waves H T d [--paddle flap --hinge l]) and analysis (analyse)");
+      "waves",
+      "wave theory (swell waves H T d [--paddle flap --hinge l]), analysis (analyse), Goda's wall "
+      "pressures (goda)");
   waves->require_subcommand(0, 1);
   const swell::WavesAnalyseCommand waves_analyse = swell::add_waves_analyse_command(*waves);
   const swell::WavesPredictCommand waves_predict = swell::add_waves_predict_command(*waves);
+  const swell::WavesGodaCommand waves_goda = swell::add_waves_goda_command(*waves);
   auto* waves_h = waves->add_option("H", waves_opt.height, "wave height [m]")->check(kPositive);
   waves->add_option("T", waves_opt.period, "wave period [s]")->check(kPositive);
   waves->add_option("d", waves_opt.depth, "still-water depth [m]")->check(kPositive);
@@ -307,6 +311,8 @@ int main(int argc, char** argv) {
       waves_analyse.run(std::cout);
     } else if (waves_predict.chosen()) {  // swell waves predict
       waves_predict.run(std::cout);
+    } else if (waves_goda.chosen()) {  // swell waves goda
+      waves_goda.run(std::cout);
     }
   } catch (const swell::Interrupted& e) {
     std::cerr << "swell: " << e.what() << "\n";

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the STL geometry of the wave-flume cases (cases/wave_flume3d.yaml, wave_flume2d.yaml).
+"""Writes the STL geometry of the wave-flume cases (wave_flume3d/2d.yaml, caisson_regular2d.yaml).
 
     python3 cases/geometry/make_wave_flume.py            # writes the STLs next to this script
     python3 cases/geometry/make_wave_flume.py --out DIR  # ... into DIR
@@ -16,6 +16,9 @@ Two closed, outward-oriented ASCII STL solids, both prisms: a cross-section in t
                    and 60 mm high with 1:1.5 slopes, carrying a caisson block 200 mm long and
                    240 mm high (crest 300 mm above the berm's base), 300 mm wide. The case
                    files place it with scale 0.001 and translate [2.6, 0, 0.1], on the shelf.
+  caisson_vertical.stl  a plain vertical caisson (no mound) for cases/caisson_regular2d.yaml,
+                   in metres, origin at its seaward bottom edge: 0.3 m long, 0.6 m high,
+                   0.3 m wide; the case places it with translate.
 
 The flume itself (4.0 x 0.3 x 0.5 m, still water 0.3 m deep) is a box in the case files.
 
@@ -55,6 +58,11 @@ CAISSON_SECTION = [
     (90.0, 60.0),  # seaward berm slope, 1:1.5
 ]
 CAISSON_WIDTH_MM = 300.0
+
+# Vertical caisson on a flat bed: (x, z) in metres, counter-clockwise, origin at the seaward
+# bottom edge (the face the waves hit is x = 0).
+VERTICAL_CAISSON_SECTION = [(0.0, 0.0), (0.3, 0.0), (0.3, 0.6), (0.0, 0.6)]
+VERTICAL_CAISSON_WIDTH = 0.3  # m
 
 
 class GeometryError(Exception):
@@ -263,6 +271,15 @@ SOLIDS = [
         CAISSON_WIDTH_MM,
         "mm",
         "caisson block on a rubble-mound berm, 300 mm wide; millimetres, origin at the seaward toe",
+    ),
+    (
+        "caisson_vertical.stl",
+        "caisson_vertical",
+        VERTICAL_CAISSON_SECTION,
+        0.0,
+        VERTICAL_CAISSON_WIDTH,
+        "m",
+        "vertical caisson 0.3 m long, 0.6 m high, 0.3 m wide; metres, origin at the seaward bottom edge",
     ),
 ]
 
