@@ -126,6 +126,14 @@ TEST(FoamWaves, RegularPaddleBecomesAStokesInletAndDampingAnOutlet) {
   // (1e-4 cell off the cell face at x = 1.13 m)
   EXPECT_NE(read(d / "system/controlDict").find("(1.130001 0 0.0025)"), std::string::npos);
 
+  // A water box that starts a particle gap off the paddle (as SPH cases do) reaches the inlet.
+  std::string text = read(kCase);
+  const auto f = text.find("    fill:");
+  text.replace(f, text.find('\n', f) - f, "    shape: {box: {min: [0.145, 0], max: [3.0, 0.3]}}");
+  const fs::path db = write(parse_case_text(text, kCase), "box");
+  EXPECT_NE(read(db / "system/setFieldsDict").find("box (0.13 -1 1e-08)"), std::string::npos)
+      << read(db / "system/setFieldsDict");
+
   // First order, no damping zone: StokesI, and the far end stays a wall.
   const fs::path d1 =
       write(wave_case("{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1.0}", false),

@@ -323,7 +323,14 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
         }
       }
     } else if (b.shape.type == ShapeSpec::Type::Box) {
-      const FluidBox fb{b.name, box_lo(b.shape.box.min), box_hi(b.shape.box.max)};
+      FluidBox fb{b.name, box_lo(b.shape.box.min), box_hi(b.shape.box.max)};
+      // SPH water starts a particle gap or so off the paddle; the inlet needs it at its face.
+      const double gap = fb.min[0] - g.min[0];
+      if (p.wave.present && gap > 0.0 && gap < 3.0 * spec.dp) {
+        fb.min[0] = g.min[0];
+        p.notes.push_back("fluid body " + b.name + ": starts " + std::to_string(gap) +
+                          " m off the paddle face; extended to the inlet");
+      }
       p.fluid_boxes.push_back(fb);
       for (long c = 0; c < g.count(); ++c)
         if (in_box(g.centre(c), fb.min, fb.max)) p.wet[c] = 1;
