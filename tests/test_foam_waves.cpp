@@ -196,8 +196,9 @@ TEST(FoamWaves, WhatCannotBeMappedIsRefusedNamingTheBodyAndKey) {
   EXPECT_NE(stop.find("motion: stop"), std::string::npos) << stop;
 }
 
-// interFoam runs the coarse flume (5 s, 1 cm cells): the first gauge (1 m from the paddle)
-// must read the wave height H = 0.04 m within 15 % over the last two periods.
+// interFoam runs the coarse flume (3.5 s, 12.5 mm cells): the first gauge (1 m from the
+// paddle) must read the wave height H = 0.04 m within 15 % over the last period (the waves
+// reach it at ~1.5 s, after the 1 s ramp).
 TEST(FoamWaves, InterFoamMakesTheWaveHeightAtTheFirstGauge) {
   std::string why;
   if (!openfoam_available(&why))
@@ -208,6 +209,8 @@ TEST(FoamWaves, InterFoamMakesTheWaveHeightAtTheFirstGauge) {
   o.out_dir = (fs::path(SWELL_BINARY_DIR) / "test_foam_waves" / "e2e").string();
   fs::remove_all(o.out_dir);
   o.run = true;
+  o.cell_size = 0.0125;  // 3.2 cells per wave height
+  o.end_time = 3.5;
   std::ostringstream log;
   FoamResult r;
   try {
@@ -218,7 +221,7 @@ TEST(FoamWaves, InterFoamMakesTheWaveHeightAtTheFirstGauge) {
   std::ifstream in(fs::path(r.gauge_dir) / "gauges_height.csv");
   ASSERT_TRUE(in) << r.gauge_dir;
   std::string line;
-  double lo = 1e9, hi = -1e9;
+  double lo = 1e9, hi = -1e9, mean = 0.0;
   int rows = 0;
   bool header = false;
   while (std::getline(in, line)) {
@@ -231,15 +234,19 @@ TEST(FoamWaves, InterFoamMakesTheWaveHeightAtTheFirstGauge) {
     }
     const double t = std::stod(line.substr(0, line.find(',')));
     const double v = std::stod(line.substr(line.find(',') + 1));
-    if (t < 3.0 - 1e-9) continue;
+    if (t < 2.5 - 1e-9) continue;
     lo = std::min(lo, v);
     hi = std::max(hi, v);
+    mean += v;
     ++rows;
   }
-  EXPECT_GE(rows, 90);  // every 0.02 s over [3, 5] s
+  EXPECT_GE(rows, 45);  // every 0.02 s over [2.5, 3.5] s
   std::cout << "interFoam: " << r.cells << " cells, " << r.steps << " steps, " << r.wall_seconds
-            << " s; WG1 over t = 3-5 s: crest " << hi << " m, trough " << lo << " m, H " << hi - lo
-            << " m (target 0.04 m)\n";
+            << " s; WG1 over t = 2.5-3.5 s: crest " << hi << " m, trough " << lo << " m, H "
+            << hi - lo << " m (target 0.04 m)\n";
   EXPECT_NEAR(hi - lo, 0.04, 0.15 * 0.04);
-  EXPECT_NEAR(0.5 * (hi + lo), 0.3, 0.005);
+  // The mean level stays the still-water depth (to the surface reading's cell/8 bias).
+  mean /= std::max(rows, 1);
+  std::cout << "mean level " << mean << " m\n";
+  EXPECT_NEAR(mean, 0.3, 0.004);
 }
