@@ -250,3 +250,60 @@ TEST(FoamWaves, InterFoamMakesTheWaveHeightAtTheFirstGauge) {
   std::cout << "mean level " << mean << " m\n";
   EXPECT_NEAR(mean, 0.3, 0.004);
 }
+
+// 2D wave cases are written with OpenFOAM's z up: what interFoam writes (points, U, forces and
+// moments in its axes, times from the wave's start) comes back in case axes and case time.
+TEST(FoamWaves, GaugesOfAZUpCaseComeBackInCaseAxesAndTime) {
+  CaseSpec spec =
+      wave_case("{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1.0, start: 0.5}");
+  GaugeSpec v;
+  v.name = "V1";
+  v.kind = GaugeSpec::Kind::Velocity;
+  v.at = Eigen::Vector3d(1.0, 0.2, 0);
+  spec.gauges.push_back(v);
+  GaugeSpec force;
+  force.name = "F_tank";
+  force.kind = GaugeSpec::Kind::Force;
+  force.body = "tank";
+  spec.gauges.push_back(force);
+  const fs::path dir = write(spec, "convert");
+  FoamOptions opt;
+  opt.out_dir = dir.string();
+  opt.cell_size = 0.01;
+  const foam::Plan plan = foam::make_plan(spec, opt);
+  ASSERT_TRUE(plan.z_up);
+  EXPECT_DOUBLE_EQ(plan.time_offset, 0.5);
+  EXPECT_DOUBLE_EQ(plan.end_time, 4.5);
+
+  const fs::path pp = dir / "postProcessing";
+  const foam::Probe& hp = plan.probes[0];
+  ASSERT_EQ(hp.spec.name, "WG1");
+  fs::create_directories(pp / hp.function / "0.2");
+  std::ofstream h(pp / hp.function / "0.2" / "WG1_alpha.water.xy");
+  for (int k = 0; k < hp.points; ++k) {  // OpenFOAM (x, y, z): wet below z = 0.31
+    const double z = hp.start.y() + k * (hp.end.y() - hp.start.y()) / (hp.points - 1);
+    h << "1.130001\t0\t" << z << "\t" << (z < 0.31 ? 1.0 : 0.0) << "\n";
+  }
+  h.close();
+  fs::create_directories(pp / plan.probes[1].function / "0");
+  std::ofstream(pp / plan.probes[1].function / "0/U")
+      << "# Probe 0 (1 0 0.2)\n#   Probe 0\n#   Time\n   0.2   (0.5 0 -0.25)\n";
+  fs::create_directories(pp / "force_F_tank/0");
+  std::ofstream(pp / "force_F_tank/0/force.dat")
+      << "# Force\n# Time\t(total_x total_y total_z)\n0.2\t(0.01 0 -0.02)\t(0 0 0)\t(0 0 0)\n";
+  std::ofstream(pp / "force_F_tank/0/moment.dat")
+      << "# Moment\n0.2\t(0 0.004 0)\t(0 0 0)\t(0 0 0)\n";
+  std::ostringstream log;
+  const auto files = convert_foam_gauges(spec, opt, (dir / "gauges").string(), log);
+  EXPECT_EQ(files.size(), 3u);
+  const std::string hcsv = read(dir / "gauges/gauges_height.csv");
+  const auto row = hcsv.find("\n0.7,");  // OpenFOAM t = 0.2 is case time 0.7
+  ASSERT_NE(row, std::string::npos) << hcsv;
+  EXPECT_NEAR(std::stod(hcsv.substr(row + 5)), 0.31, 0.003);  // within one sample (cell/4)
+  EXPECT_NE(read(dir / "gauges/gauges_velocity.csv").find("\n0.7,0.5,-0.25\n"), std::string::npos)
+      << read(dir / "gauges/gauges_velocity.csv");
+  // Per metre of width (one 10 mm cell); the case's moment about z is -M_y of OpenFOAM (the
+  // y <-> z swap is a reflection).
+  EXPECT_NE(read(dir / "gauges/gauges_force.csv").find("\n0.7,1,-2,-0.4\n"), std::string::npos)
+      << read(dir / "gauges/gauges_force.csv");
+}
