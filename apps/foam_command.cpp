@@ -10,6 +10,7 @@ FoamResult run_foam_command(const CaseSpec& spec, const FoamOptions& opt_in, std
   FoamOptions opt = opt_in;
   if (opt.out_dir.empty()) opt.out_dir = "out/" + spec.name + "_foam";
   const FoamResult r = opt.run ? run_foam_case(spec, opt, out) : write_foam_case(spec, opt, out);
+  out << std::defaultfloat << std::setprecision(6);  // the runner's logs may have changed it
   out << "summary: " << r.cells << " cells of " << r.cell_size << " m, end time " << r.end_time
       << " s\n";
   if (r.ran) {

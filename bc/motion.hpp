@@ -78,6 +78,12 @@ struct MotionSpec {
   double lever = 0.0;  // [m], flap
   std::string wave_label{};
   std::vector<std::string> wave_notes{};  // validity warnings (waves/theory.hpp)
+  // The wave as the case file gave it (for `swell foam`, which maps it to interFoam's
+  // waveModels): kind ("regular", "solitary", "irregular", "focused"), H [m], T [s] (regular),
+  // order (regular), phase [rad] (regular).
+  std::string wave_kind{};
+  double wave_height = 0.0, wave_period = 0.0, wave_phase = 0.0;
+  int wave_order = 1;
 
   // Wave, piston only: active absorption (bc/absorption.hpp), read from `absorption:`.
   struct Absorption {

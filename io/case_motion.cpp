@@ -284,6 +284,7 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
   using waves::PaddleGeometry;
   const Names kinds = {"regular", "solitary", "focused", "irregular"};
   const std::string kind = choice(require(node, path, "wave"), child(path, "wave"), kinds);
+  spec.wave_kind = kind;
   const std::vector<std::pair<std::string, Names>> own = {
       {"regular", {"height", "period", "order", "phase"}},
       {"solitary", {"height"}},
@@ -372,6 +373,10 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
       double phase = 0.0;
       if (auto v = find(node, "phase")) phase = kDegree * number(*v, child(path, "phase"));
       signal = waves::regular_paddle(paddle, h, t, order, phase, g_);
+      spec.wave_height = h;
+      spec.wave_period = t;
+      spec.wave_order = order;
+      spec.wave_phase = phase;
       const waves::WaveAssessment a =
           waves::assess_regular_wave(h, t, paddle.depth, paddle, order, dp_, g_);
       label << ", H " << h << " m, T " << t << " s, order " << order << " (L " << a.length
@@ -384,6 +389,7 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
         fail(*v, child(path, "ramp") + ": a solitary wave starts from rest and takes no ramp");
       const double h = number_pos("height");
       signal = waves::solitary_paddle(paddle, h, g_);
+      spec.wave_height = h;
       label << ", H " << h << " m (stroke " << signal.soliton.stroke << " m over "
             << signal.soliton.duration << " s)";
     } else {

@@ -9,6 +9,8 @@
 #include "io/case_geometry.hpp"
 #include "validation/foam.hpp"
 #include "validation/foam_plan.hpp"
+#include "waves/dispersion.hpp"
+#include "waves/wavemaker.hpp"
 
 namespace swell::foam {
 
@@ -81,6 +83,96 @@ void for_cells_in(const Grid& g, const Eigen::Vector3d& lo, const Eigen::Vector3
       }
 }
 
+// The wave paddle, if any: checks that interFoam's waveModels can make its wave and fills
+// p.wave, p.time_offset and p.z_up. Returns the paddle's body index (bodies.size() if none).
+// Bodies with any other motion are refused: the mesh here cannot move (DESIGN.md, OpenFOAM).
+std::size_t plan_wave(const CaseSpec& spec, const std::vector<geometry::BodyGeometry>& geo,
+                      const BodySpec& tank, Plan& p) {
+  std::size_t paddle = spec.bodies.size();
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    const BodySpec& b = spec.bodies[i];
+    const MotionSpec& m = b.motion;
+    if (m.type == MotionSpec::Type::None) continue;
+    const std::string where = spec.file + ": body " + b.name + ", motion: ";
+    if (m.type != MotionSpec::Type::Wave)
+      throw std::invalid_argument(
+          where + "swell foam cannot map a " +
+          (m.type == MotionSpec::Type::File ? std::string("motion from a file (type: file)")
+                                            : std::string("prescribed motion")) +
+          "; interFoam runs only fixed Cartesian meshes here, so only a piston wave paddle "
+          "(type: wave, paddle: piston) is mapped, to a wave inlet");
+    if (paddle != spec.bodies.size())
+      throw std::invalid_argument(where + "swell foam maps one wave paddle; " +
+                                  spec.bodies[paddle].name + " is one already");
+    if (!m.paddle || m.paddle->paddle.type != waves::PaddleGeometry::Type::Piston)
+      throw std::invalid_argument(where +
+                                  "paddle: flap cannot be mapped (interFoam's waveModels make "
+                                  "the wave at a fixed inlet as a piston's far field); use "
+                                  "paddle: piston");
+    if (m.wave_kind != "regular" && m.wave_kind != "solitary")
+      throw std::invalid_argument(where + "wave: " + m.wave_kind +
+                                  " cannot be mapped (swell foam maps wave: regular, order 1 "
+                                  "or 2, and wave: solitary)");
+    if (!(m.direction[0] > 1.0 - 1e-9))
+      throw std::invalid_argument(where +
+                                  "direction: swell foam needs waves travelling along +x "
+                                  "(the paddle at the tank's xmin end)");
+    if (std::isfinite(m.stop) && m.stop < spec.t_end)
+      throw std::invalid_argument(where +
+                                  "stop: interFoam's waveModels cannot stop a wave; remove "
+                                  "`stop` or end the case before it");
+    paddle = i;
+    WaveInlet& w = p.wave;
+    w.present = true;
+    w.body = b.name;
+    w.x0 = geo[i].shape->bounds().max[0];  // the fluid-side face at rest
+    if (!(w.x0 > tank.shape.box.min[0] && w.x0 < tank.shape.box.max[0]))
+      throw std::invalid_argument(where + "the paddle's face (x = " + std::to_string(w.x0) +
+                                  ") must lie inside the tank");
+    w.height = m.wave_height;
+    w.depth = m.paddle->paddle.depth;
+    p.time_offset = m.start;
+    const double g = spec.gravity.norm();
+    if (m.wave_kind == "regular") {
+      w.model = m.wave_order == 2 ? "StokesII" : "StokesI";
+      w.period = m.wave_period;
+      w.ramp = m.ramp;
+      // The SPH paddle makes eta(x, tau) = a cos(w tau + phi - k x) (+ the bound 2nd harmonic
+      // at twice the phase), x from its rest face, tau = t - start (waves/wavemaker.hpp).
+      // waveModels impose eta = a cos(k x_in - w t + wavePhase) at the inlet x_in = x0; with
+      // OpenFOAM t = tau: wavePhase = -(phi + k x0), wrapped to [0, 2 pi).
+      const double omega = 2.0 * M_PI / w.period;
+      const double k = waves::wave_number(omega, w.depth, g);
+      w.phase = std::fmod(-(m.wave_phase + k * w.x0), 2.0 * M_PI);
+      if (w.phase < 0.0) w.phase += 2.0 * M_PI;
+    } else {
+      // 1912's solitary model `Boussinesq` puts the crest at the inlet at t_in = 3.5 d
+      // sqrt(d / H) / c, c = sqrt(g (d + H)). Goring's paddle (waves/wavemaker.hpp) makes
+      // eta = H sech^2(kappa (c (tau - t0) - X)), t0 = duration / 2, X from the trajectory's
+      // middle; its rest face is X = X(0) = soliton.start (~ -S/2), reached by the crest at
+      // tau = t0 + start / c. OpenFOAM t = 0 is case time start + t0 + start / c - t_in.
+      w.model = "Boussinesq";
+      const waves::SolitaryPaddle& s = m.paddle->soliton;
+      const double c = std::sqrt(g * (w.depth + w.height));
+      const double t_in = 3.5 * w.depth * std::sqrt(w.depth / w.height) / c;
+      p.time_offset += 0.5 * s.duration + s.start / s.celerity - t_in;
+      if (p.time_offset < 0.0)
+        throw std::invalid_argument(where + "start: give the solitary wave " +
+                                    std::to_string(-p.time_offset) +
+                                    " s more start time for interFoam's solitary model");
+    }
+    w.absorbing_outlet = !spec.damping.empty();
+    p.notes.push_back(
+        "wave paddle " + b.name + " -> inlet (" + w.model + ") at x = " + std::to_string(w.x0) +
+        " m; far end: " + (w.absorbing_outlet ? "outlet (shallowWaterAbsorption)" : "wall") +
+        (p.time_offset != 0.0
+             ? "; OpenFOAM t = 0 is case time " + std::to_string(p.time_offset) + " s"
+             : std::string()));
+  }
+  p.z_up = paddle != spec.bodies.size() && spec.dim == 2;
+  return paddle;
+}
+
 }  // namespace
 
 Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
@@ -108,6 +200,9 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
                                 "`walls: inside` and a box shape); the OpenFOAM mesh spans it");
   p.tank = tank->name;
   p.open = tank->open;
+  // Every body's shape, and each fill's container, as the SPH fill sees them.
+  const std::vector<geometry::BodyGeometry> geo = case_geometry(spec);
+  const std::size_t paddle_index = plan_wave(spec, geo, *tank, p);
 
   const double cell = opt.cell_size > 0.0 ? opt.cell_size : spec.dp / opt.cells_per_dp;
   if (!(cell > 0.0) || !std::isfinite(cell))
@@ -115,6 +210,7 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
   p.cell_size = cell;
   g.min = tank->shape.box.min;
   g.max = tank->shape.box.max;
+  if (p.wave.present) g.min[0] = p.wave.x0;  // the mesh starts at the paddle's face
   for (int d = 0; d < dim; ++d) {
     const double len = g.max[d] - g.min[d];
     if (!(len > 0.0)) throw std::invalid_argument(spec.file + ": the tank box is empty");
@@ -131,15 +227,16 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
     throw std::invalid_argument("swell foam: " + std::to_string(g.count()) +
                                 " cells is too many; choose a larger --cell");
 
-  p.end_time = opt.end_time >= 0.0 ? opt.end_time : spec.t_end;
-  if (!(p.end_time > 0.0)) throw std::invalid_argument("swell foam: the end time must be > 0");
+  p.end_time = (opt.end_time >= 0.0 ? opt.end_time : spec.t_end) - p.time_offset;
+  if (!(p.end_time > 0.0))
+    throw std::invalid_argument("swell foam: the end time must be > 0" +
+                                (p.time_offset > 0.0 ? " and after the wave's start (" +
+                                                           std::to_string(p.time_offset) + " s)"
+                                                     : std::string()));
   p.write_interval = p.end_time / 10.0;
   p.rho_water = spec.rho0;
   p.gravity = spec.gravity;
   if (dim == 2) p.gravity[2] = 0.0;
-
-  // Every body's shape, and each fill's container, as the SPH fill sees them.
-  const std::vector<geometry::BodyGeometry> geo = case_geometry(spec);
   // Boxes given to topoSet/setFields (boxToCell: cells whose centre lies in the box, faces
   // included) are shrunk by 1e-6 cell, so a centre lying exactly on a box face is out on both
   // sides (here and in OpenFOAM) whatever the round-off.
@@ -162,7 +259,7 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
   p.removed.assign(static_cast<std::size_t>(g.count()), 0);
   for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
     const BodySpec& b = spec.bodies[i];
-    if (b.kind != BodySpec::Kind::Boundary || i == tank_index) continue;
+    if (b.kind != BodySpec::Kind::Boundary || i == tank_index || i == paddle_index) continue;
     if (b.walls == BodySpec::Walls::Inside) {
       p.notes.push_back("body " + b.name +
                         ": a second `walls: inside` body is not meshed (only the tank is)");
@@ -226,7 +323,14 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
         }
       }
     } else if (b.shape.type == ShapeSpec::Type::Box) {
-      const FluidBox fb{b.name, box_lo(b.shape.box.min), box_hi(b.shape.box.max)};
+      FluidBox fb{b.name, box_lo(b.shape.box.min), box_hi(b.shape.box.max)};
+      // SPH water starts a particle gap or so off the paddle; the inlet needs it at its face.
+      const double gap = fb.min[0] - g.min[0];
+      if (p.wave.present && gap > 0.0 && gap < 3.0 * spec.dp) {
+        fb.min[0] = g.min[0];
+        p.notes.push_back("fluid body " + b.name + ": starts " + std::to_string(gap) +
+                          " m off the paddle face; extended to the inlet");
+      }
       p.fluid_boxes.push_back(fb);
       for (long c = 0; c < g.count(); ++c)
         if (in_box(g.centre(c), fb.min, fb.max)) p.wet[c] = 1;

@@ -49,6 +49,9 @@ void write_file(const fs::path& path, const std::string& text) {
 const char* const kFaceVertices[6] = {"(0 4 7 3)", "(2 6 5 1)", "(1 5 4 0)",
                                       "(3 7 6 2)", "(0 3 2 1)", "(4 5 6 7)"};
 
+// Face f in OpenFOAM's axes is face kSwapFace[f] in case axes when Plan::z_up (y <-> z).
+const int kSwapFace[6] = {0, 1, 4, 5, 2, 3};
+
 bool is_open(const Plan& p, int face) {
   for (const auto& o : p.open)
     if (o == kFaceNames[face]) return true;
@@ -57,26 +60,35 @@ bool is_open(const Plan& p, int face) {
 
 std::string block_mesh_dict(const Plan& p) {
   const Grid& g = p.grid;
+  // In OpenFOAM's axes (Plan::foam): with z_up, case axis 1 is OpenFOAM's z and case z its y.
+  const Eigen::Vector3d lo = p.foam(g.min), hi = p.foam(g.max);
+  const Eigen::Vector3i n = p.z_up ? Eigen::Vector3i(g.n[0], g.n[2], g.n[1]) : g.n;
   std::ostringstream s;
   s << header("dictionary", "blockMeshDict", "system");
-  s << "// Tank " << vec(g.min) << " - " << vec(g.max) << ", cells " << g.n[0] << " x " << g.n[1]
-    << " x " << g.n[2] << " (" << g.count() << ").\n";
+  s << "// Tank " << vec(lo) << " - " << vec(hi) << ", cells " << n[0] << " x " << n[1] << " x "
+    << n[2] << " (" << g.count() << ")"
+    << (p.z_up ? "; the case's (x, y) are OpenFOAM's (x, z)" : "") << ".\n";
   s << "scale 1;\n\nvertices\n(\n";
   for (int k = 0; k < 2; ++k)
     for (int v = 0; v < 4; ++v) {
-      const double x = (v == 1 || v == 2) ? g.max[0] : g.min[0];
-      const double y = (v >= 2) ? g.max[1] : g.min[1];
-      const double z = k ? g.max[2] : g.min[2];
+      const double x = (v == 1 || v == 2) ? hi[0] : lo[0];
+      const double y = (v >= 2) ? hi[1] : lo[1];
+      const double z = k ? hi[2] : lo[2];
       s << "    " << vec({x, y, z}) << "\n";
     }
-  s << ");\n\nblocks\n(\n    hex (0 1 2 3 4 5 6 7) (" << g.n[0] << " " << g.n[1] << " " << g.n[2]
+  s << ");\n\nblocks\n(\n    hex (0 1 2 3 4 5 6 7) (" << n[0] << " " << n[1] << " " << n[2]
     << ") simpleGrading (1 1 1)\n);\n\nedges ();\n\nboundary\n(\n";
-  std::ostringstream walls, open, empty;
+  std::ostringstream walls, open, empty, inlet, outlet;
   for (int f = 0; f < 6; ++f) {
-    const bool z_face = f >= 4;
-    if (z_face && g.dim == 2) {
+    const int cf = p.z_up ? kSwapFace[f] : f;  // the face in case axes
+    const bool thin = cf >= 4 && g.dim == 2;
+    if (thin) {
       empty << "            " << kFaceVertices[f] << "\n";
-    } else if (is_open(p, f)) {
+    } else if (p.wave.present && cf == 0) {
+      inlet << "            " << kFaceVertices[f] << "\n";
+    } else if (p.wave.absorbing_outlet && cf == 1) {
+      outlet << "            " << kFaceVertices[f] << "\n";
+    } else if (is_open(p, cf)) {
       open << "            " << kFaceVertices[f] << "\n";
     } else {
       walls << "            " << kFaceVertices[f] << "\n";
@@ -87,6 +99,10 @@ std::string block_mesh_dict(const Plan& p) {
   if (!open.str().empty())
     s << "    atmosphere\n    {\n        type patch;\n        faces\n        (\n"
       << open.str() << "        );\n    }\n";
+  for (const auto& [name, faces] : {std::pair{"inlet", &inlet}, std::pair{"outlet", &outlet}})
+    if (!faces->str().empty())
+      s << "    " << name << "\n    {\n        type patch;\n        faces\n        (\n"
+        << faces->str() << "        );\n    }\n";
   for (const auto& ob : p.obstacles)
     s << "    " << ob.name << "\n    {\n        type wall;\n        faces ();\n    }\n";
   if (!empty.str().empty())
@@ -103,11 +119,15 @@ std::vector<std::string> wall_patches(const Plan& p) {
 }
 
 // One boundaryField for the tank, the open faces, the obstacles and the 2D front/back.
-std::string boundary_field(const Plan& p, const std::string& wall, const std::string& atmosphere) {
+// With a wave paddle, also the wave `inlet` and (absorbing far end) `outlet`.
+std::string boundary_field(const Plan& p, const std::string& wall, const std::string& atmosphere,
+                           const std::string& inlet, const std::string& outlet) {
   std::ostringstream s;
   s << "boundaryField\n{\n";
   for (const auto& w : wall_patches(p)) s << "    " << w << "\n    {\n" << wall << "    }\n";
   if (!p.open.empty()) s << "    atmosphere\n    {\n" << atmosphere << "    }\n";
+  if (p.wave.present) s << "    inlet\n    {\n" << inlet << "    }\n";
+  if (p.wave.absorbing_outlet) s << "    outlet\n    {\n" << outlet << "    }\n";
   if (p.grid.dim == 2) s << "    frontAndBack\n    {\n        type empty;\n    }\n";
   s << "}\n";
   return s.str();
@@ -118,14 +138,18 @@ std::string field_u(const Plan& p) {
          "dimensions      [0 1 -1 0 0 0 0];\n\ninternalField   uniform (0 0 0);\n\n" +
          boundary_field(p, "        type noSlip;\n",
                         "        type pressureInletOutletVelocity;\n"
-                        "        value uniform (0 0 0);\n");
+                        "        value uniform (0 0 0);\n",
+                        "        type waveVelocity;\n        value uniform (0 0 0);\n",
+                        "        type waveVelocity;\n        value uniform (0 0 0);\n");
 }
 
 std::string field_p_rgh(const Plan& p) {
   return header("volScalarField", "p_rgh", "0") +
          "dimensions      [1 -1 -2 0 0 0 0];\n\ninternalField   uniform 0;\n\n" +
          boundary_field(p, "        type fixedFluxPressure;\n        value uniform 0;\n",
-                        "        type totalPressure;\n        p0 uniform 0;\n");
+                        "        type totalPressure;\n        p0 uniform 0;\n",
+                        "        type fixedFluxPressure;\n        value uniform 0;\n",
+                        "        type fixedFluxPressure;\n        value uniform 0;\n");
 }
 
 std::string field_alpha(const Plan& p) {
@@ -143,7 +167,9 @@ std::string field_alpha(const Plan& p) {
   }
   s << boundary_field(p, "        type zeroGradient;\n",
                       "        type inletOutlet;\n        inletValue uniform 0;\n"
-                      "        value uniform 0;\n");
+                      "        value uniform 0;\n",
+                      "        type waveAlpha;\n        value uniform 0;\n",
+                      "        type zeroGradient;\n");
   return s.str();
 }
 
@@ -158,23 +184,23 @@ std::string set_fields_dict(const Plan& p) {
   }
   s << "regions\n(\n";
   for (const auto& fb : p.fluid_boxes)
-    s << "    // fluid body " << fb.body << "\n    boxToCell\n    {\n        box " << vec(fb.min)
-      << " " << vec(fb.max)
+    s << "    // fluid body " << fb.body << "\n    boxToCell\n    {\n        box "
+      << vec(p.foam(fb.min)) << " " << vec(p.foam(fb.max))
       << ";\n        fieldValues\n        (\n            volScalarFieldValue alpha.water 1\n"
       << "        );\n    }\n";
   s << ");\n";
   return s.str();
 }
 
-std::string topo_set_dict(const Obstacle& ob) {
+std::string topo_set_dict(const Plan& p, const Obstacle& ob) {
   std::ostringstream s;
   s << header("dictionary", "topoSetDict", "system");
   s << "// Cells kept when body " << ob.name << " is cut out: all but those whose centre lies\n"
     << "// inside it (" << ob.cells.size() << " cells).\nactions\n(\n    {\n        name    keep_"
     << ob.name << ";\n        type    cellSet;\n        action  new;\n";
   if (ob.is_box) {
-    s << "        source  boxToCell;\n        box     " << vec(ob.box_min) << " " << vec(ob.box_max)
-      << ";\n";
+    s << "        source  boxToCell;\n        box     " << vec(p.foam(ob.box_min)) << " "
+      << vec(p.foam(ob.box_max)) << ";\n";
   } else {
     s << "        source  labelToCell;\n        value\n        (";
     for (std::size_t i = 0; i < ob.labels.size(); ++i)
@@ -208,7 +234,7 @@ std::string function_objects(const Plan& p) {
           << (pr.spec.kind == GaugeSpec::Kind::Pressure ? "p" : "U") << ");\n"
           << "        interpolationScheme cell;\n        probeLocations\n        (\n";
         for (const auto* q : members)
-          s << "            " << vec(q->point) << "  // " << q->spec.name << "\n";
+          s << "            " << vec(p.foam(q->point)) << "  // " << q->spec.name << "\n";
         s << "        );\n";
         break;
       }
@@ -231,7 +257,7 @@ std::string function_objects(const Plan& p) {
               << "                axis    xyz;\n                points\n                (";
             for (int k = 0; k < q->points; ++k) {
               const double f = q->points > 1 ? static_cast<double>(k) / (q->points - 1) : 0.0;
-              s << "\n                    " << vec(a + f * (b - a));
+              s << "\n                    " << vec(p.foam(a + f * (b - a)));
             }
             s << "\n                );\n            }\n";
           }
@@ -246,11 +272,40 @@ std::string function_objects(const Plan& p) {
           << "        patches         (";
         for (std::size_t i = 0; i < pr.patches.size(); ++i) s << (i ? " " : "") << pr.patches[i];
         s << ");\n        rho             rho;\n        rhoInf          " << num(p.rho_water)
-          << ";\n        CofR            " << vec(pr.cofr) << ";\n        log             false;\n";
+          << ";\n        CofR            " << vec(p.foam(pr.cofr))
+          << ";\n        log             false;\n";
         break;
     }
     s << "    }\n";
   }
+  return s.str();
+}
+
+// interFoam's waveModels (v1912): the paddle's wave at `inlet`, shallowWaterAbsorption at
+// `outlet`. Both patches absorb actively (Higuera et al. 2013).
+std::string wave_properties(const Plan& p) {
+  const WaveInlet& w = p.wave;
+  std::ostringstream s;
+  s << header("dictionary", "waveProperties", "constant");
+  s << "// Wave paddle " << w.body << " (piston), its rest face x = " << num(w.x0)
+    << " m: the inlet.\n";
+  if (p.time_offset != 0.0) s << "// OpenFOAM t = 0 is case time " << num(p.time_offset) << " s.\n";
+  s << "inlet\n{\n    alpha           alpha.water;\n    waveModel       " << w.model
+    << ";\n    nPaddle         1;\n    waveHeight      " << num(w.height)
+    << ";\n    waveAngle       0;\n    waterDepthRef   " << num(w.depth)
+    << ";\n    activeAbsorption yes;\n";
+  if (w.model == "Boussinesq") {
+    s << "    wavePeriod      0;\n";
+  } else {
+    // A linear ramp of the wave amplitude over rampTime (the SPH paddle: a smoothstep of its
+    // displacement over the same time). rampTime 0 would divide by zero: 1e-9 s instead.
+    s << "    wavePeriod      " << num(w.period) << ";\n    wavePhase       " << num(w.phase)
+      << ";\n    rampTime        " << num(std::max(w.ramp, 1e-9)) << ";\n";
+  }
+  s << "}\n";
+  if (w.absorbing_outlet)
+    s << "\noutlet\n{\n    alpha           alpha.water;\n    waveModel       "
+         "shallowWaterAbsorption;\n    nPaddle         1;\n}\n";
   return s.str();
 }
 
@@ -388,10 +443,11 @@ void write_case_files(const Plan& p, const std::string& dir_str) {
   write_file(dir / "system/fvSolution", header("dictionary", "fvSolution", "system") + kFvSolution);
   write_file(dir / "system/setFieldsDict", set_fields_dict(p));
   for (const auto& ob : p.obstacles)
-    write_file(dir / ("system/topoSetDict." + ob.name), topo_set_dict(ob));
+    write_file(dir / ("system/topoSetDict." + ob.name), topo_set_dict(p, ob));
+  if (p.wave.present) write_file(dir / "constant/waveProperties", wave_properties(p));
   write_file(dir / "constant/g", header("uniformDimensionedVectorField", "g", "constant") +
                                      "dimensions      [0 1 -2 0 0 0 0];\nvalue           " +
-                                     vec(p.gravity) + ";\n");
+                                     vec(p.foam(p.gravity)) + ";\n");
   write_file(dir / "constant/transportProperties",
              header("dictionary", "transportProperties", "constant") +
                  "phases (water air);\n\nwater\n{\n    transportModel  Newtonian;\n"

@@ -90,15 +90,17 @@ int declared_probes(const fs::path& fo_dir, const std::string& file) {
   return -1;
 }
 
-// A raw set file: one "x y z alpha" line per point found in the mesh.
-std::vector<std::array<double, 4>> read_set(const fs::path& file) {
+// A raw set file: one "x y z alpha" line per point found in the mesh; points in case axes.
+std::vector<std::array<double, 4>> read_set(const Plan& plan, const fs::path& file) {
   std::vector<std::array<double, 4>> pts;
   std::ifstream in(file);
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
     const auto v = numbers(line);
-    if (v.size() >= 4) pts.push_back({v[0], v[1], v[2], v[3]});
+    if (v.size() < 4) continue;
+    const Eigen::Vector3d x = plan.foam(Eigen::Vector3d(v[0], v[1], v[2]));
+    pts.push_back({x[0], x[1], x[2], v[3]});
   }
   return pts;
 }
@@ -205,6 +207,7 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
     // of the count is.
     const std::size_t n_members = members.size();
     auto put = [&](std::size_t member, double t, std::vector<double> v) {
+      t += plan.time_offset;  // OpenFOAM time -> case time
       Column& c = rows[time_key(t)];
       c.time = t;
       c.values.resize(n_members);
@@ -234,6 +237,7 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
             if (static_cast<int>(v.size()) < (index + 1) * stride) continue;
             std::vector<double> out(v.begin() + index * stride,
                                     v.begin() + index * stride + (vector ? dim : 1));
+            if (vector && plan.z_up) out[1] = v[index * stride + 2];  // OpenFOAM's z: case y
             put(m, row.first, std::move(out));
           }
           break;
@@ -241,7 +245,7 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
         case GaugeSpec::Kind::Height:
           for (const auto& [t, dir] : time_dirs(fo)) {
             const fs::path f = dir / (foam::foam_word(pr.spec.name) + "_alpha.water.xy");
-            if (fs::exists(f)) put(m, t, {height_from_set(pr, up, read_set(f))});
+            if (fs::exists(f)) put(m, t, {height_from_set(pr, up, read_set(plan, f))});
           }
           break;
         case GaugeSpec::Kind::Front:
@@ -255,7 +259,7 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
               any = true;
               const double x0 = pr.line_starts[l][0], dx = plan.grid.cell[0];
               std::vector<double> alpha(static_cast<std::size_t>(pr.points), kNaN);
-              for (const auto& p : read_set(f)) {
+              for (const auto& p : read_set(plan, f)) {
                 const long i = std::lround((p[0] - x0) / dx);
                 if (i >= 0 && i < pr.points) alpha[i] = p[3];
               }
@@ -272,8 +276,13 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
             const auto mit = moments.find(key);
             if (row.second.size() < 3 || mit == moments.end() || mit->second.second.size() < 3)
               continue;
-            const auto& f = row.second;
-            const auto& mo = mit->second.second;
+            // Case axes. The y <-> z swap of Plan::z_up is a reflection, so the moment (an
+            // axial vector) also changes sign: case M_z = -OpenFOAM M_y.
+            const double sign = plan.z_up ? -1.0 : 1.0;
+            const Eigen::Vector3d f = plan.foam({row.second[0], row.second[1], row.second[2]});
+            const Eigen::Vector3d mo =
+                sign *
+                plan.foam({mit->second.second[0], mit->second.second[1], mit->second.second[2]});
             std::vector<double> v;
             for (int d = 0; d < dim; ++d) v.push_back(f[d] / width);
             if (dim == 2) {

@@ -58,8 +58,37 @@ struct Probe {
   bool skipped = false;                                 // not sampled (see Plan::notes)
 };
 
+// A piston wave paddle mapped to interFoam's waveModels (constant/waveProperties): the paddle
+// face becomes patch `inlet` (waveVelocity / waveAlpha), the far end wall patch `outlet`
+// (shallowWaterAbsorption) where the case has a damping zone.
+struct WaveInlet {
+  bool present = false;
+  std::string body;     // the paddle body
+  std::string model;    // StokesI, StokesII, Boussinesq (the 1912 solitary model)
+  double height = 0.0;  // H [m]
+  double period = 0.0;  // T [s] (regular)
+  double depth = 0.0;   // waterDepthRef [m]
+  double phase = 0.0;   // wavePhase [rad] (regular)
+  double ramp = 0.0;    // rampTime [s] (regular)
+  double x0 = 0.0;      // the inlet: the paddle's fluid-side face at rest [m]
+  bool absorbing_outlet = false;
+};
+
 struct Plan {
   std::string case_name;
+  // OpenFOAM t = 0 is case time `time_offset` (a wave paddle's start, and for a solitary wave
+  // the shift that puts its crest at the inlet when the SPH paddle's would be); gauge times
+  // are written in case time.
+  double time_offset = 0.0;
+  // 2D wave cases: OpenFOAM's vertical is z (1912's waveModels assume it; with gravity along
+  // -y the run dies of a floating-point exception within 10 steps, measured), so the case's
+  // (x, y) are written as OpenFOAM's (x, z) and its thin direction is y. The grid, obstacles and
+  // probes below stay in case coordinates; foam() maps a point (a swap, its own inverse).
+  bool z_up = false;
+  Eigen::Vector3d foam(const Eigen::Vector3d& v) const {
+    return z_up ? Eigen::Vector3d(v[0], v[2], v[1]) : v;
+  }
+  WaveInlet wave;
   Grid grid;
   double cell_size = 0.0;  // nominal size asked for
   double end_time = 0.0;
