@@ -248,6 +248,8 @@ std::string function_objects(const Plan& p) {
         s << ");\n        rho             rho;\n        rhoInf          " << num(p.rho_water)
           << ";\n        CofR            " << vec(pr.cofr) << ";\n        log             false;\n";
         break;
+      case GaugeSpec::Kind::Runup:  // skipped by the plan (foam_case.cpp)
+        break;
     }
     s << "    }\n";
   }
