@@ -1,5 +1,6 @@
 #include "apps/gauge_set.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -27,6 +28,10 @@ const char* kind_comment(GaugeSpec::Kind k) {
       return "force and moment of the fluid on boundary bodies (2D: per metre of width)";
     case GaugeSpec::Kind::Front:
       return "surge front: largest x of fluid within the band above the floor, plus dp/2 [m]";
+    case GaugeSpec::Kind::Runup:
+      return "runup: elevation of the highest point of the slope line where the fluid kernel "
+             "sum dp/2 off the surface reaches 0.3 rho0, above swl where the gauge gives one, "
+             "else absolute [m]; sampling: max, the largest value since the previous row";
   }
   return "";
 }
@@ -43,6 +48,17 @@ double height_level(const GaugeSpec& g, const GaugeContext& ctx, const ParticleS
       return water_height_integral(ps, kernel, at, ctx.up_axis, ctx.line_top, 0.5 * p.dp, p.rho0);
     return water_height(ps, kernel, at, ctx.up_axis, ctx.line_top, 0.5 * p.dp, p.rho0);
   });
+}
+
+// A runup gauge's value (no allocation once the candidate buffer has grown).
+template <int D>
+double runup_level(const GaugeSpec& g, const GaugeContext& ctx, const ParticleSet<D>& ps) {
+  const SolverParams& p = ctx.params;
+  const double z = with_kernel<D>(p.kernel, p.h, [&](const auto& kernel) {
+    return runup_elevation(ps, kernel, Vec<D>(g.from.template head<D>()),
+                           Vec<D>(g.to.template head<D>()), ctx.up_axis, 0.5 * p.dp, p.dp, p.rho0);
+  });
+  return g.swl ? z - *g.swl : z;
 }
 
 template <int D>
@@ -71,6 +87,8 @@ std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
       }
       case GaugeSpec::Kind::Height:
         return {height_level<D>(g, ctx, ps)};
+      case GaugeSpec::Kind::Runup:
+        return {runup_level<D>(g, ctx, ps)};
       case GaugeSpec::Kind::Front: {
         Vec<D> up = Vec<D>::Zero();
         up[ctx.up_axis] = 1.0;
@@ -119,7 +137,8 @@ GaugeSet<D>::GaugeSet(const std::vector<GaugeSpec>& gauges, double default_every
       e.file = file;
       e.first_column = columns.size();
       averaging_ = averaging_ || (gauges[i].kind == GaugeSpec::Kind::Pressure && gauges[i].size) ||
-                   (gauges[i].kind == GaugeSpec::Kind::Height && gauges[i].mean);
+                   (gauges[i].kind == GaugeSpec::Kind::Height && gauges[i].mean) ||
+                   (gauges[i].kind == GaugeSpec::Kind::Runup && gauges[i].max);
       for (auto& c : gauge_columns(gauges[i], D)) columns.push_back(c);
     }
     const std::string path =
@@ -153,6 +172,11 @@ void GaugeSet<D>::sample(double time, const ParticleSet<D>& ps, const std::vecto
         values[0] = e.acc / e.acc_t;
         e.acc = e.acc_t = 0.0;
       }
+      if (e.has_peak) {  // a runup maximum: the interval's largest value, the row's instant
+                         // included
+        values[0] = std::max(values[0], e.peak);
+        e.has_peak = false;
+      }
       for (std::size_t k = 0; k < values.size(); ++k) {
         row_[e.first_column + k] = values[k];
         present_[e.first_column + k] = true;
@@ -171,6 +195,12 @@ void GaugeSet<D>::accumulate(double dt, const ParticleSet<D>& ps,
   const SolverParams& p = ctx_.params;
   with_kernel<D>(p.kernel, p.h, [&](const auto& kernel) {
     for (auto& e : gauges_) {
+      if (e.spec.kind == GaugeSpec::Kind::Runup && e.spec.max) {  // a runup maximum
+        const double r = runup_level<D>(e.spec, ctx_, ps);
+        e.peak = e.has_peak ? std::max(e.peak, r) : r;
+        e.has_peak = true;
+        continue;
+      }
       if (e.spec.kind == GaugeSpec::Kind::Height && e.spec.mean) {  // a mean wave gauge
         e.acc += dt * height_level<D>(e.spec, ctx_, ps);
         e.acc_t += dt;
@@ -203,6 +233,7 @@ void GaugeSet<D>::save_schedule(std::map<std::string, double>& schedule) const {
       schedule["gauge_acc." + e.spec.name] = e.acc;
       schedule["gauge_acc_t." + e.spec.name] = e.acc_t;
     }
+    if (e.has_peak) schedule["gauge_peak." + e.spec.name] = e.peak;  // a runup maximum's
   }
 }
 
@@ -216,6 +247,11 @@ void GaugeSet<D>::load_schedule(const std::map<std::string, double>& schedule) {
     if (a != schedule.end() && at != schedule.end()) {
       e.acc = a->second;
       e.acc_t = at->second;
+    }
+    const auto pk = schedule.find("gauge_peak." + e.spec.name);
+    if (pk != schedule.end()) {
+      e.peak = pk->second;
+      e.has_peak = true;
     }
   }
 }

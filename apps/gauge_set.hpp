@@ -44,8 +44,8 @@ class GaugeSet {
   void sample(double time, const ParticleSet<D>& ps, const std::vector<double>& pressure,
               const std::vector<Vec<D>>& ace);
   // Sensor faces (pressure gauges with a size) and height gauges with `sampling: mean` are
-  // averaged over each sampling interval: call
-  // this after every step with the step's dt (sample() then writes the interval means).
+  // averaged over each sampling interval, runup gauges with `sampling: max` take its maximum:
+  // call this after every step with the step's dt (sample() then writes the interval values).
   bool averages() const { return averaging_; }
   void accumulate(double dt, const ParticleSet<D>& ps, const std::vector<double>& pressure);
   void flush();
@@ -61,6 +61,8 @@ class GaugeSet {
     double acc = 0.0, acc_t = 0.0;  // sensor face: integral of p dt and its duration so far
     std::vector<Vec<D>> points;     // sensor face: quadrature points (built on first use)
     Vec<D> normal = Vec<D>::Zero();
+    double peak = 0.0;  // runup with `sampling: max`: the largest value since the last row
+    bool has_peak = false;
   };
   std::vector<Entry> gauges_;
   std::vector<std::unique_ptr<GaugeCsvFile>> files_;

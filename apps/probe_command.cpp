@@ -46,8 +46,17 @@ int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadat
     g.kind = GaugeSpec::Kind::Velocity;
   } else if (opt.kind == "height") {
     g.kind = GaugeSpec::Kind::Height;
+  } else if (opt.kind == "runup") {
+    g.kind = GaugeSpec::Kind::Runup;
+    if (!opt.to) throw std::invalid_argument("--kind runup needs --to (the line's upper end)");
+    g.from = opt.at;
+    g.to = *opt.to;
+    g.swl = opt.swl;
+    if (!(g.to[D - 1] > g.from[D - 1]))
+      throw std::invalid_argument("--to must lie above --at (the line runs up the slope)");
   } else {
-    throw std::invalid_argument("--kind " + opt.kind + ": expected pressure, velocity or height");
+    throw std::invalid_argument("--kind " + opt.kind +
+                                ": expected pressure, velocity, height or runup");
   }
   GaugeContext ctx;
   ctx.params.kernel = kernel_from_name(meta.kernel);

@@ -11,11 +11,13 @@ namespace swell {
 
 struct ProbeOptions {
   std::string out_dir;            // a run's output folder
-  std::string kind = "pressure";  // pressure | velocity | height
+  std::string kind = "pressure";  // pressure | velocity | height | runup
   Eigen::Vector3d at = Eigen::Vector3d::Zero();
   std::optional<Eigen::Vector3d> normal;  // pressure: sample at at + offset * normal
   std::optional<double> offset;
-  std::string output;  // CSV file; empty: write to `out`
+  std::optional<Eigen::Vector3d> to;  // runup: the line's upper end (`at` is its lower end)
+  std::optional<double> swl;          // runup: still-water level
+  std::string output;                 // CSV file; empty: write to `out`
 };
 
 // Writes the CSV series (header with units, one row per snapshot); returns the row count.

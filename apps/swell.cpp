@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -90,14 +91,20 @@ int main(int argc, char** argv) {
   fill->add_option("-t,--threads", fill_threads, "OpenMP threads (default: all cores)")
       ->check(kCount);
 
-  std::string probe_dir, probe_at, probe_normal, probe_kind = "pressure", probe_out;
+  std::string probe_dir, probe_at, probe_normal, probe_kind = "pressure", probe_out, probe_to;
   double probe_offset = -1.0;
+  std::optional<double> probe_swl;
   auto* probe = app.add_subcommand("probe", "evaluate a gauge on the snapshots of a finished run");
   probe->add_option("outdir", probe_dir, "output folder of a run (holding <case>.h5)")->required();
-  probe->add_option("--at", probe_at, "point x,y[,z] (height: horizontal position and line start)")
+  probe
+      ->add_option("--at", probe_at,
+                   "point x,y[,z] (height: horizontal position and line start; runup: the "
+                   "line's lower end on the slope)")
       ->required();
-  probe->add_option("--kind", probe_kind, "pressure | velocity | height")
-      ->check(CLI::IsMember({"pressure", "velocity", "height"}));
+  probe->add_option("--kind", probe_kind, "pressure | velocity | height | runup")
+      ->check(CLI::IsMember({"pressure", "velocity", "height", "runup"}));
+  probe->add_option("--to", probe_to, "runup: the line's upper end on the slope x,y[,z]");
+  probe->add_option("--swl", probe_swl, "runup: still-water level (the value is relative to it)");
   probe->add_option("--normal", probe_normal,
                     "pressure: wall normal nx,ny[,nz]; sample at at + offset*normal");
   probe->add_option("--offset", probe_offset, "distance along the normal (default h)");
@@ -263,6 +270,8 @@ int main(int argc, char** argv) {
         if (!opt.normal) throw std::invalid_argument("--offset needs --normal");
         opt.offset = probe_offset;
       }
+      if (!probe_to.empty()) opt.to = swell::parse_vector_option(probe_to, "--to");
+      opt.swl = probe_swl;
       opt.output = probe_out;
       const int rows = swell::run_probe(opt, std::cout);
       if (!probe_out.empty())

@@ -32,6 +32,7 @@ const std::vector<GaugeKindInfo>& gauge_kinds() {
       {"velocity", GaugeSpec::Kind::Velocity, {"at"}},
       {"force", GaugeSpec::Kind::Force, {"body", "moment_about"}},
       {"front", GaugeSpec::Kind::Front, {"band"}},
+      {"runup", GaugeSpec::Kind::Runup, {"from", "to", "swl", "sampling"}},
   };
   return kinds;
 }
@@ -56,6 +57,7 @@ class GaugeReader : private NodeReader {
   std::string gauge_name(const YAML::Node& node, const std::string& path) const;
   void read_pressure(const YAML::Node& node, const std::string& path, GaugeSpec& gauge) const;
   void read_force(const YAML::Node& node, const std::string& path, GaugeSpec& gauge) const;
+  void read_runup(const YAML::Node& node, const std::string& path, GaugeSpec& gauge) const;
 
   const std::vector<BodySpec>& bodies_;
 };
@@ -121,6 +123,9 @@ GaugeSpec GaugeReader::read_gauge(const YAML::Node& node, const std::string& pat
       if (auto v = find(node, "band")) {
         gauge.band = number_if(*v, child(path, "band"), positive, "a number > 0");
       }
+      break;
+    case GaugeSpec::Kind::Runup:
+      read_runup(node, path, gauge);
       break;
   }
   return gauge;
@@ -215,6 +220,30 @@ void GaugeReader::read_force(const YAML::Node& node, const std::string& path,
   }
   if (auto v = find(node, "moment_about")) {
     gauge.moment_about = vector(*v, child(path, "moment_about"));
+  }
+}
+
+// The line along the slope: `from` below `to` (the vertical is the last axis), not vertical.
+void GaugeReader::read_runup(const YAML::Node& node, const std::string& path,
+                             GaugeSpec& gauge) const {
+  const YAML::Node from_node = require(node, path, "from");
+  const YAML::Node to_node = require(node, path, "to");
+  gauge.from = vector(from_node, child(path, "from"));
+  gauge.to = vector(to_node, child(path, "to"));
+  const int up = dim() - 1;
+  expect(gauge.to[up] > gauge.from[up], to_node, child(path, "to"),
+         "a point higher than 'from' (the line runs up the slope from below the shoreline)");
+  const Eigen::Vector3d d = gauge.to - gauge.from;
+  expect(d.norm() - std::abs(d[up]) > 1e-9 * d.norm(), to_node, child(path, "to"),
+         "a point beside 'from', not straight above it (the line lies along a slope)");
+  gauge.at = gauge.from;  // the domain check of the case setup
+  if (auto v = find(node, "swl")) gauge.swl = number(*v, child(path, "swl"));
+  if (auto v = find(node, "sampling")) {
+    const std::string m = text(*v, child(path, "sampling"));
+    expect(m == "instant" || m == "max", *v, child(path, "sampling"),
+           "instant (the runup at each row's time) or max (the largest runup within each "
+           "interval, evaluated every step)");
+    gauge.max = m == "max";
   }
 }
 

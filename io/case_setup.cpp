@@ -379,7 +379,8 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
                           point_text(p.domain_min, D) + " - " + point_text(p.domain_max, D) +
                           ", where there is never fluid");
     }
-    if (gs.kind == GaugeSpec::Kind::Height) continue;  // its line starts on a floor
+    // A height line starts on a floor, a runup line lies on a slope.
+    if (gs.kind == GaugeSpec::Kind::Height || gs.kind == GaugeSpec::Kind::Runup) continue;
     for (const auto& gb : geo) {
       // Structures only: beside a tank, "outside its shape" may be above an open face.
       if (gb.fluid || !gb.shape || gb.walls_inside) continue;

@@ -45,7 +45,7 @@ struct BodySpec {
 
 // A measurement taken during the run (and by `swell probe` from saved snapshots).
 struct GaugeSpec {
-  enum class Kind { Pressure, Height, Velocity, Force, Front };
+  enum class Kind { Pressure, Height, Velocity, Force, Front, Runup };
   std::string name;
   Kind kind = Kind::Pressure;
   // pressure, velocity: the point; height: the start of the vertical measuring line (its
@@ -73,6 +73,13 @@ struct GaugeSpec {
   // each sampling interval (a wave gauge that misses no crest between two rows); `instant`
   // (the default) writes the level at the row's time.
   bool mean = false;
+  // runup: the line along the slope surface, `from` (below the lowest shoreline) to `to`
+  // (above the highest), and the still-water level the value is given relative to (absolute
+  // elevation without it). `max` (`sampling: max`) evaluates the runup after every step and
+  // writes the largest value of each interval (solver/gauges.hpp runup_elevation).
+  Eigen::Vector3d from = Eigen::Vector3d::Zero(), to = Eigen::Vector3d::Zero();
+  std::optional<double> swl;
+  bool max = false;
   double every = 0.0;  // sampling interval [s]; 0: output.gauge_every
   int line = 0;
 };
@@ -90,6 +97,8 @@ inline const char* gauge_kind_name(GaugeSpec::Kind k) {
       return "force";
     case GaugeSpec::Kind::Front:
       return "front";
+    case GaugeSpec::Kind::Runup:
+      return "runup";
   }
   return "gauge";
 }

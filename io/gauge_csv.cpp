@@ -81,6 +81,9 @@ std::vector<std::string> gauge_columns(const GaugeSpec& g, int dim) {
     case GaugeSpec::Kind::Front:
       c.push_back(g.name + " [m]");
       break;
+    case GaugeSpec::Kind::Runup:  // the CSV says whether relative to a still-water level
+      c.push_back(g.name + (g.swl ? " above swl [m]" : " elevation [m]"));
+      break;
     case GaugeSpec::Kind::Velocity:
       for (int d = 0; d < dim; ++d) c.push_back(g.name + "_v" + axes[d] + " [m/s]");
       break;

@@ -1379,6 +1379,50 @@ TEST(CaseFileGauges, HeightLevelDefinition) {
       {"level"}));
 }
 
+TEST(CaseFileGauges, RunupLineSwlAndSampling) {
+  const CaseSpec spec = parse_case_text(
+      with_gauges("  - {name: R, kind: runup, from: [0.2, 0], to: [0.8, 0.3], swl: 0.1, "
+                  "sampling: max}\n"
+                  "  - {name: R2, kind: runup, from: [0.2, 0], to: [0.8, 0.3]}\n"),
+      kLabel);
+  ASSERT_EQ(spec.gauges.size(), 2u);
+  const GaugeSpec& r = spec.gauges[0];
+  EXPECT_EQ(r.kind, GaugeSpec::Kind::Runup);
+  EXPECT_EQ(r.from, Eigen::Vector3d(0.2, 0.0, 0.0));
+  EXPECT_EQ(r.to, Eigen::Vector3d(0.8, 0.3, 0.0));
+  ASSERT_TRUE(r.swl.has_value());
+  EXPECT_DOUBLE_EQ(*r.swl, 0.1);
+  EXPECT_TRUE(r.max);
+  EXPECT_FALSE(spec.gauges[1].swl.has_value());
+  EXPECT_FALSE(spec.gauges[1].max);
+  EXPECT_EQ(std::string(gauge_kind_name(r.kind)), "runup");
+}
+
+TEST(CaseFileGaugeErrors, RunupBadKeys) {
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: R, kind: runup, from: [0.2, 0]}\n"), 8,
+                              {"missing required key 'gauges[0].to'"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(with_gauges("  - {name: R, kind: runup, from: [0.8, 0.3], to: [0.2, 0]}\n"),
+                      8, {"gauges[0].to", "a point higher than 'from'"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(with_gauges("  - {name: R, kind: runup, from: [0.2, 0], to: [0.2, 0.3]}\n"),
+                      8, {"gauges[0].to", "not straight above it"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      with_gauges("  - {name: R, kind: runup, from: [0.2, 0], to: [0.8, 0.3], sampling: mean}\n"),
+      8, {"gauges[0].sampling", "instant (the runup at each row's time) or max", "'mean'"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      with_gauges("  - {name: R, kind: runup, from: [0.2, 0], to: [0.8, 0.3], at: [0, 0]}\n"), 8,
+      {"gauges[0].at", "runup gauges take no 'at'"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      with_gauges("  - {name: R, kind: runup, from: [0.2, 0], to: [0.8, 0.3], swl: high}\n"), 8,
+      {"gauges[0].swl", "'high'"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: H, kind: height, at: [0.1, 0], swl: 0.1}\n"),
+                              8, {"gauges[0].swl", "height gauges take no 'swl'", "runup"}));
+  EXPECT_TRUE(
+      ThrowsCaseError(with_gauges("  - {name: H, kind: height, at: [0.1, 0], sampling: max}\n"), 8,
+                      {"gauges[0].sampling", "instant (the level at each row's time) or mean"}));
+}
+
 TEST(CaseFileGaugeErrors, MissingOrUnknownKind) {
   EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: P1, at: [0.1, 0.1]}\n"), 8,
                               {"missing required key 'gauges[0].kind'"}));

@@ -4,12 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
 
 #include "apps/case_runner.hpp"
+#include "apps/gauge_set.hpp"
 #include "io/case_file.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/gauges.hpp"
@@ -17,6 +22,8 @@
 
 namespace swell {
 namespace {
+
+namespace fs = std::filesystem;
 
 // ---------------------------------------------------------------------------------------------
 // Hand-made particle sets
@@ -195,6 +202,149 @@ TEST(WaterHeight, LatticeBlockSurfaceAndDryAndFullColumns) {
   EXPECT_THROW(water_height(ps, k, Vec<2>(0.2, 0.0), 2, 0.4, 0.5 * dp, rho0),
                std::invalid_argument);
   EXPECT_THROW(water_height(ps, k, Vec<2>(0.2, 0.0), 1, 0.4, 0.0, rho0), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Runup along a slope
+
+// A fluid layer of `rows` particle rows on a slope through the origin at angle beta, particles
+// on a dp lattice in the slope's frame, from s = 0 to s = s_end along it (its edge: the last
+// particle + dp/2), on two rows of wall particles (which the gauge must ignore).
+ParticleSet<2> slope_layer(double beta, int rows, double s_end, double dp, double rho) {
+  ParticleSet<2> ps;
+  const Vec<2> t(std::cos(beta), std::sin(beta)), n(-std::sin(beta), std::cos(beta));
+  const int ns = static_cast<int>(std::lround(s_end / dp));
+  for (int i = -10; i < ns + 20; ++i) {
+    for (int j = 0; j < rows && i < ns; ++j)
+      ps.add(((i + 0.5) * dp) * t + ((j + 0.5) * dp) * n, Vec<2>::Zero(), rho, rho * dp * dp,
+             Role::Fluid, 0);
+    for (int j = 1; j <= 2; ++j)
+      ps.add(((i + 0.5) * dp) * t - ((j - 0.5) * dp) * n, Vec<2>::Zero(), rho, rho * dp * dp,
+             Role::FixedWall, 0);
+  }
+  return ps;
+}
+
+// The gauge finds the layer's edge: a 1:19.85 and a 1:3 slope, films of 1, 3 and 6 rows;
+// the elevation is within 0.25 dp (along the slope) of the edge's.
+TEST(RunupGauge, LayerOnASlopeEndsAtItsEdge) {
+  const double dp = 0.01, rho = 1000.0;
+  const WendlandC2<2> kernel(std::sqrt(2.0) * dp);
+  for (const double cot : {19.85, 3.0}) {
+    const double beta = std::atan(1.0 / cot);
+    const Vec<2> t(std::cos(beta), std::sin(beta));
+    for (const int rows : {1, 3, 6}) {
+      const double s_end = 0.4;
+      const ParticleSet<2> ps = slope_layer(beta, rows, s_end, dp, rho);
+      const double z =
+          runup_elevation(ps, kernel, Vec<2>(-0.05 * t), Vec<2>(1.0 * t), 1, 0.5 * dp, dp, rho);
+      EXPECT_NEAR(z / std::sin(beta), s_end, 0.25 * dp) << "cot " << cot << ", rows " << rows;
+    }
+  }
+}
+
+// A lone particle ahead of the layer is dry; a dry line reads `from`, a wet top `to`; the
+// answer does not depend on the order of the particles; bad lines are refused.
+TEST(RunupGauge, LoneParticleDryLineWetTopAndBadLines) {
+  const double dp = 0.01, rho = 1000.0, beta = std::atan(1.0 / 5.0);
+  const WendlandC2<2> kernel(std::sqrt(2.0) * dp);
+  const Vec<2> t(std::cos(beta), std::sin(beta)), n(-std::sin(beta), std::cos(beta));
+  ParticleSet<2> ps = slope_layer(beta, 3, 0.3, dp, rho);
+  const Vec<2> from = -0.05 * t, to = 1.0 * t;
+  const double z = runup_elevation(ps, kernel, from, to, 1, 0.5 * dp, dp, rho);
+  ps.add(0.6 * t + 0.5 * dp * n, Vec<2>::Zero(), rho, rho * dp * dp, Role::Fluid, 0);
+  EXPECT_DOUBLE_EQ(runup_elevation(ps, kernel, from, to, 1, 0.5 * dp, dp, rho), z);
+  // Reversed particle order: the same value up to summation order.
+  ParticleSet<2> rev;
+  for (std::size_t j = ps.size(); j-- > 0;)
+    rev.add(ps.pos[j], ps.vel[j], ps.rho[j], ps.mass[j], ps.role[j], ps.body[j]);
+  EXPECT_NEAR(runup_elevation(rev, kernel, from, to, 1, 0.5 * dp, dp, rho), z, 1e-12);
+  // Only wall particles: dry, the start's elevation. A line ending inside the layer: its top.
+  const ParticleSet<2> walls = slope_layer(beta, 0, 0.3, dp, rho);
+  EXPECT_DOUBLE_EQ(runup_elevation(walls, kernel, from, to, 1, 0.5 * dp, dp, rho), from.y());
+  EXPECT_DOUBLE_EQ(runup_elevation(ps, kernel, from, Vec<2>(0.2 * t), 1, 0.5 * dp, dp, rho),
+                   0.2 * t.y());
+  EXPECT_THROW(runup_elevation(ps, kernel, to, from, 1, 0.5 * dp, dp, rho), std::invalid_argument);
+  EXPECT_THROW(
+      runup_elevation(ps, kernel, Vec<2>(0.1, 0.0), Vec<2>(0.1, 0.5), 1, 0.5 * dp, dp, rho),
+      std::invalid_argument);
+  EXPECT_THROW(runup_elevation(ps, kernel, from, to, 2, 0.5 * dp, dp, rho), std::invalid_argument);
+}
+
+// 3D: a layer on a slope, uniform across y, the line in the plane y = 0.05.
+TEST(RunupGauge, LayerOnASlopeIn3D) {
+  const double dp = 0.01, rho = 1000.0, beta = std::atan(1.0 / 4.0), s_end = 0.2;
+  const WendlandC2<3> kernel(std::sqrt(3.0) * dp);
+  const Vec<3> t(std::cos(beta), 0.0, std::sin(beta)), n(-std::sin(beta), 0.0, std::cos(beta));
+  ParticleSet<3> ps;
+  for (int i = -5; i < 20; ++i)
+    for (int k = 0; k < 10; ++k)
+      for (int j = 0; j < 3; ++j)
+        ps.add(((i + 0.5) * dp) * t + ((j + 0.5) * dp) * n + Vec<3>(0, (k + 0.5) * dp, 0),
+               Vec<3>::Zero(), rho, rho * dp * dp * dp, Role::Fluid, 0);
+  const Vec<3> y(0.0, 0.05, 0.0);
+  const double z =
+      runup_elevation(ps, kernel, Vec<3>(y - 0.02 * t), Vec<3>(y + 0.5 * t), 2, 0.5 * dp, dp, rho);
+  EXPECT_NEAR(z / std::sin(beta), s_end, 0.25 * dp);
+}
+
+// `sampling: max`: the row holds the largest runup since the previous row (here reached in
+// the middle of the interval), not the last one; `instant` the row's value; the peak survives a
+// checkpoint.
+TEST(RunupGauge, MaxSamplingKeepsTheIntervalsPeak) {
+  const double dp = 0.01, rho = 1000.0, beta = std::atan(1.0 / 5.0);
+  GaugeSpec g;
+  g.name = "R";
+  g.kind = GaugeSpec::Kind::Runup;
+  const Vec<2> t(std::cos(beta), std::sin(beta));
+  g.from = Eigen::Vector3d(-0.05 * t.x(), -0.05 * t.y(), 0.0);
+  g.to = Eigen::Vector3d(t.x(), t.y(), 0.0);
+  g.swl = 0.02;
+  g.max = true;
+  GaugeSpec gi = g;
+  gi.name = "Ri";
+  gi.max = false;
+  GaugeContext ctx;
+  ctx.params.dp = dp;
+  ctx.params.h = std::sqrt(2.0) * dp;
+  ctx.params.rho0 = rho;
+  const fs::path dir = fs::temp_directory_path() / "swell_test_runup";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const double ends[3] = {0.2, 0.5, 0.3};
+  double level[3];
+  {
+    GaugeSet<2> set({g, gi}, 0.1, ctx, dir.string(), "runup", -1.0);
+    ASSERT_TRUE(set.averages());
+    set.sample(0.0, slope_layer(beta, 3, 0.1, dp, rho), {}, {});
+    for (int k = 0; k < 3; ++k) {
+      const ParticleSet<2> ps = slope_layer(beta, 3, ends[k], dp, rho);
+      level[k] = runup_elevation(ps, WendlandC2<2>(ctx.params.h), Vec<2>(-0.05 * t), t, 1, 0.5 * dp,
+                                 dp, rho) -
+                 0.02;
+      if (k == 2) {  // a checkpoint before the last step
+        std::map<std::string, double> sched;
+        set.save_schedule(sched);
+        ASSERT_EQ(sched.count("gauge_peak.R"), 1u);
+        set.load_schedule(sched);
+      }
+      set.accumulate(0.01, ps, {});
+    }
+    set.sample(0.1, slope_layer(beta, 3, ends[2], dp, rho), {}, {});
+    set.flush();
+  }
+  std::ifstream f(dir / "gauges_runup.csv");
+  std::string line, header, last;
+  while (std::getline(f, line)) {
+    if (line.rfind("time", 0) == 0) header = line;
+    if (!line.empty() && line[0] != '#') last = line;
+  }
+  EXPECT_EQ(header, "time [s],R above swl [m],Ri above swl [m]");
+  double time = 0.0, r = 0.0, ri = 0.0;
+  ASSERT_EQ(std::sscanf(last.c_str(), "%lf,%lf,%lf", &time, &r, &ri), 3) << last;
+  EXPECT_NEAR(r, level[1], 1e-8);   // the peak, in the middle of the interval
+  EXPECT_NEAR(ri, level[2], 1e-8);  // the instant
+  EXPECT_GT(level[1] - level[2], 10 * dp * std::sin(beta));
 }
 
 TEST(BodyLoad, TwoParticlesGiveExactForceAndMoment2D) {

@@ -433,6 +433,9 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
         if (gs.moment_about) pr.cofr = *gs.moment_about;
         break;
       }
+      case GaugeSpec::Kind::Runup:
+        skip("swell foam does not sample runup gauges");
+        break;
     }
     if (gs.kind == GaugeSpec::Kind::Force) {
       pr.function = "force_" + foam_word(gs.name);

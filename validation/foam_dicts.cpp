@@ -275,6 +275,8 @@ std::string function_objects(const Plan& p) {
           << ";\n        CofR            " << vec(p.foam(pr.cofr))
           << ";\n        log             false;\n";
         break;
+      case GaugeSpec::Kind::Runup:  // skipped by the plan (foam_case.cpp)
+        break;
     }
     s << "    }\n";
   }

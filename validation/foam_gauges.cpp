@@ -122,6 +122,8 @@ const char* kind_comment(GaugeSpec::Kind k) {
     case GaugeSpec::Kind::Front:
       return "surge front: alpha.water >= 0.5 along the first cell row above the floor, from "
              "the water's start, + the fraction of the next cell [m]";
+    case GaugeSpec::Kind::Runup:
+      return "runup: not sampled by swell foam";
   }
   return "";
 }
@@ -294,6 +296,8 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
           }
           break;
         }
+        case GaugeSpec::Kind::Runup:  // skipped by the plan
+          break;
       }
     }
 

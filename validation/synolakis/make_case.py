@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""Write (and optionally run) a 2D Synolakis (1987) solitary-wave runup case for one H/d.
+
+Flume: a piston paddle at x = 0.1 m, a flat bed of depth d, then a 1:19.85 beach. The toe of the
+beach lies L/2 beyond the paddle's mid-stroke position, where the crest leaves the paddle
+(Synolakis puts the crest L/2 seaward of the toe at t = 0), with the wave's length
+L = (2/k) arccosh(sqrt(20)), k = sqrt(3H/(4d^3)) (the 5 % width of sech^2). The run ends when the
+crest has had 1.15 times the linear shallow-water travel time 2 X0 / sqrt(g d) to climb the beach
+(X0 = d cot beta) after reaching the toe.
+
+  python3 validation/synolakis/make_case.py --hd 0.04 --d 0.3 --dp 0.015 -o runs/h040.yaml
+  python3 validation/synolakis/make_case.py --hd 0.04 --run            # also `swell run -t 1`
+
+The runup gauge R (sampling: max, above the still-water level) lies along the beach from its toe
+to its top; the maximum of its column is the maximum runup R (validation/synolakis/runup_table.py).
+"""
+import argparse
+import math
+import os
+import subprocess
+import sys
+
+COT_BETA = 19.85
+G = 9.81
+
+
+def geometry(hd, d, dp):
+    H = hd * d
+    k = math.sqrt(3.0 * H / (4.0 * d**3))
+    L = 2.0 / k * math.acosh(math.sqrt(20.0))
+    c = math.sqrt(G * (d + H))
+    stroke = 2.0 * H / (k * d)                      # Goring (1978) paddle stroke
+    duration = 2.0 * (3.8 + hd) / (k * c)           # Goring's motion duration
+    paddle = (0.1, 0.1 + 2 * dp)                    # plate at rest, 2 dp thick
+    x_crest0 = paddle[1] + 0.5 * stroke             # crest leaves the paddle about here
+    x_toe = x_crest0 + 0.5 * L
+    r_law = 2.831 * math.sqrt(COT_BETA) * hd**1.25 * d
+    top = d + min(1.5 * r_law, 1.0 * d)             # beach top: room above the expected runup
+    x_top = x_toe + COT_BETA * top
+    t_end = 0.5 * duration + 0.5 * L / c + 1.15 * 2.0 * COT_BETA * d / math.sqrt(G * d)
+    return dict(H=H, k=k, L=L, c=c, stroke=stroke, paddle=paddle, x_toe=x_toe, top=top,
+                x_top=x_top, t_end=t_end, r_law=r_law)
+
+
+def case_text(hd, d, dp, coefsound, name=None):
+    g = geometry(hd, d, dp)
+    f = lambda v: f"{v:.6g}"
+    x_end = g["x_top"] + 3 * dp
+    ytop = g["top"] + 0.1 * d
+    return f"""# Synolakis (1987) solitary-wave runup on a 1:19.85 beach, H/d = {hd:g} (written by
+# validation/synolakis/make_case.py --hd {hd:g} --d {d:g} --dp {dp:g}).
+# d = {f(d)} m, H = {f(g['H'])} m (H/dp = {g['H']/dp:.2f}), L = {f(g['L'])} m, toe at x = {f(g['x_toe'])} m,
+# law R = 2.831 sqrt(cot beta) (H/d)^(5/4) d = {f(g['r_law'])} m.
+name: {name or f"synolakis_h{round(hd * 1000):03d}"}
+dim: 2
+dp: {f(dp)}
+physics:
+  rho0: 1000
+  gravity: [0, -9.81]
+  coefsound: {f(coefsound)}
+  coefh: 1.0
+  viscosity: {{model: artificial, alpha: 0.01}}
+  density_diffusion: {{model: fourtakas, delta: 0.1}}
+time: {{end: {f(g['t_end'])}, cfl: 0.2}}
+bodies:
+  - name: tank
+    kind: boundary
+    shape: {{box: {{min: [0, 0], max: [{f(x_end)}, {f(ytop)}]}}}}
+    walls: inside
+    layers: 3
+    open: [ymax]
+  - name: paddle                       # piston, Goring (1978) solitary-wave trajectory
+    kind: boundary
+    shape: {{box: {{min: [{f(g['paddle'][0])}, 0], max: [{f(g['paddle'][1])}, {f(ytop)}]}}}}
+    walls: outside
+    layers: 2
+    motion: {{type: wave, wave: solitary, depth: {f(d)}, height: {f(g['H'])}}}
+  - name: beach                        # 1:19.85 from the toe to the top
+    kind: boundary
+    shape: {{polygon: {{points: [[{f(g['x_toe'])}, 0], [{f(g['x_top'])}, {f(g['top'])}], [{f(x_end)}, {f(g['top'])}], [{f(x_end)}, 0]]}}}}
+    walls: outside
+    layers: 2
+  - name: water
+    kind: fluid
+    shape: {{box: {{min: [{f(g['paddle'][1] + 0.5 * dp)}, 0], max: [{f(x_end)}, {f(d)}]}}}}
+gauges:
+  - {{name: R, kind: runup, from: [{f(g['x_toe'])}, 0], to: [{f(g['x_top'])}, {f(g['top'])}], swl: {f(d)}, sampling: max}}
+  - {{name: eta_toe, kind: height, at: [{f(g['x_toe'] - 0.5 * d)}, 0]}}
+  - {{name: eta_mid, kind: height, at: [{f(0.5 * (g['paddle'][1] + g['x_toe']))}, 0]}}
+output: {{every: {f(g['t_end'] / 20)}, vtk: false, hdf5: true, gauge_every: 0.02}}
+"""
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--hd", type=float, required=True, help="H/d")
+    ap.add_argument("--d", type=float, default=0.3, help="depth d [m] (default 0.3)")
+    ap.add_argument("--dp", type=float, default=0.015, help="particle spacing [m] (default 0.015)")
+    ap.add_argument("--coefsound", type=float, default=10.0, help="physics.coefsound (default 10: half the steps of 20; the flow stays below Mach 0.2)")
+    ap.add_argument("--name", help="case name (default synolakis_hNNN, NNN = 1000 H/d)")
+    ap.add_argument("-o", "--out", help="case file to write (default runs/synolakis_hNNN.yaml)")
+    ap.add_argument("--run", action="store_true", help="run it: swell run -t 1")
+    ap.add_argument("--swell", default="build/swell")
+    a = ap.parse_args()
+    path = a.out or f"runs/synolakis_h{round(a.hd * 1000):03d}.yaml"
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    with open(path, "w") as fh:
+        fh.write(case_text(a.hd, a.d, a.dp, a.coefsound, a.name))
+    print(path)
+    if a.run:
+        out = os.path.splitext(path)[0]
+        sys.exit(subprocess.call([a.swell, "run", path, "-t", "1", "-q", "-o", out, "--overwrite"]))
+
+
+if __name__ == "__main__":
+    main()

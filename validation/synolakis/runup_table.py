@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""Maximum runup R/d of Synolakis runs against the lab points and the runup law.
+
+  python3 validation/synolakis/runup_table.py RUN_DIR [RUN_DIR ...] -o validation/synolakis/results
+
+Each RUN_DIR is the output folder of a case written by make_case.py (its gauges_runup.csv holds
+R above the still-water level; the case's header comment gives H/d and d). R_max is the largest
+value of the R column; R_rest its first row (the shoreline at rest, which the discrete wedge puts
+below the still-water level), and R_max - R_rest the runup corrected for that offset. Both are
+listed against the law R/d = 2.831 sqrt(cot beta) (H/d)^(5/4) and the mean of the lab points
+within +-0.005 of the run's H/d (../shared/reference/synolakis_1987_runup_lab.csv; lab waves break
+for H/d > 0.045). Writes runup_table.csv and runup.png (matplotlib, numpy only).
+"""
+import argparse
+import csv
+import glob
+import math
+import os
+import re
+
+import numpy as np
+
+COT_BETA = 19.85
+LAB = os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "reference",
+                   "synolakis_1987_runup_lab.csv")
+
+
+def law(hd):
+    return 2.831 * math.sqrt(COT_BETA) * hd ** 1.25
+
+
+def read_lab(path):
+    rows = [l for l in open(path) if l.strip() and not l.startswith("#")]
+    data = np.array([[float(v) for v in l.split(",")[:2]] for l in rows[1:]])
+    return data[:, 0], data[:, 1]
+
+
+def read_run(folder):
+    case = glob.glob(os.path.join(folder, "*.yaml")) + glob.glob(folder + ".yaml")
+    meta = {}
+    for path in case[:1]:
+        text = open(path).read()
+        m = re.search(r"--hd ([0-9.eE+-]+) --d ([0-9.eE+-]+) --dp ([0-9.eE+-]*[0-9])", text)
+        if m:
+            meta = dict(hd=float(m.group(1)), d=float(m.group(2)), dp=float(m.group(3)))
+    if not meta:
+        raise SystemExit(f"{folder}: no case written by make_case.py next to it ({folder}.yaml)")
+    t, r = [], []
+    with open(os.path.join(folder, "gauges_runup.csv")) as fh:
+        for row in csv.reader(l for l in fh if not l.startswith("#")):
+            if row[0].startswith("time") or len(row) < 2 or row[1] == "":
+                continue
+            t.append(float(row[0]))
+            r.append(float(row[1]))
+    t, r = np.array(t), np.array(r)
+    k = int(np.argmax(r))
+    wall = ""
+    summary = os.path.join(folder, "run_summary.txt")
+    if os.path.exists(summary):
+        m = re.search(r"wall time:\s+(\S+) s", open(summary).read())
+        wall = m.group(1) if m else ""
+    return dict(meta, r_max=r[k], t_max=t[k], r_rest=r[0], t_end=t[-1], wall=wall)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("-o", "--out", default="validation/synolakis/results")
+    ap.add_argument("--lab", default=LAB)
+    a = ap.parse_args()
+    lab_h, lab_r = read_lab(a.lab)
+    os.makedirs(a.out, exist_ok=True)
+    rows = []
+    for folder in a.runs:
+        run = read_run(folder.rstrip("/"))
+        hd, d = run["hd"], run["d"]
+        near = lab_r[np.abs(lab_h - hd) <= 0.005 + 1e-9]
+        lab_mean = float(np.mean(near)) if len(near) else float("nan")
+        rows.append(dict(
+            H_over_d=hd, d_m=d, dp_m=run["dp"], H_over_dp=hd * d / run["dp"],
+            R_over_d=run["r_max"] / d, R_rest_over_d=run["r_rest"] / d,
+            R_corr_over_d=(run["r_max"] - run["r_rest"]) / d, t_max_s=run["t_max"],
+            law_R_over_d=law(hd), lab_mean_R_over_d=lab_mean, lab_points=len(near),
+            err_vs_lab=(run["r_max"] / d) / lab_mean - 1.0,
+            err_corr_vs_lab=((run["r_max"] - run["r_rest"]) / d) / lab_mean - 1.0,
+            breaking_in_lab=hd > 0.045, wall_s=run["wall"]))
+    path = os.path.join(a.out, "runup_table.csv")
+    with open(path, "w", newline="") as fh:
+        fh.write("# max runup of swell runs (make_case.py; R above swl, gauge sampling: max); "
+                 "lab: mean of Synolakis (1987) points within +-0.005 of H/d; "
+                 "law: 2.831 sqrt(cot beta) (H/d)^1.25\n")
+        w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items()})
+    print(open(path).read())
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    ax.loglog(lab_h, lab_r, "k.", label="Synolakis (1987) lab")
+    hh = np.logspace(np.log10(0.005), np.log10(0.7), 100)
+    ax.loglog(hh, [law(h) for h in hh], "k--", lw=1, label="law 2.831 sqrt(cot b) (H/d)^1.25")
+    ax.axvline(0.045, color="0.6", lw=0.8, ls=":")
+    ax.text(0.047, 0.012, "breaking (lab)", color="0.4", fontsize=8)
+    hs = [r["H_over_d"] for r in rows]
+    ax.loglog(hs, [r["R_over_d"] for r in rows], "rs", label="Swell, R max")
+    ax.loglog(hs, [r["R_corr_over_d"] for r in rows], "b^", mfc="none",
+              label="Swell, R max - R at rest")
+    ax.set_xlabel("H/d")
+    ax.set_ylabel("R/d")
+    ax.set_ylim(0.01, 2)
+    ax.legend(fontsize=8)
+    ax.set_title("Solitary-wave runup on a 1:19.85 beach")
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.out, "runup.png"), dpi=120)
+
+
+if __name__ == "__main__":
+    main()
