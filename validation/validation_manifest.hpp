@@ -32,8 +32,11 @@ struct Normalisation {
 
 struct ManifestReference {
   std::string name;   // used by gauges[].reference and targets[].against
-  std::string file;   // resolved path of the CSV
+  std::string file;   // resolved path of the CSV ("" for a theory reference)
   std::string label;  // legend text
+  // "paddle": no file; the series is the case's wave-paddle theory at the gauge named by the
+  // column (validation/wave_theory.hpp), computed by `swell validate`.
+  std::string theory;
 };
 
 // One gauge to compare: its reference columns and the metric windows (normalised time).
