@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 
 #include "io/resources.hpp"
@@ -76,7 +78,8 @@ class Install : public ::testing::Test {
   static int install_rc;
 
   static void SetUpTestSuite() {
-    root = fs::temp_directory_path() / "swell_test_install";
+    // One folder per process: ctest runs each test in its own process, maybe in parallel.
+    root = fs::temp_directory_path() / ("swell_test_install_" + std::to_string(::getpid()));
     fs::remove_all(root);
     fs::create_directories(root / "work");
     const fs::path staged = root / "staged";
@@ -86,6 +89,10 @@ class Install : public ::testing::Test {
     install_log = read_text(root / "install.log");
     prefix = root / "moved prefix";  // a space too: paths are quoted where they go to a shell
     if (install_rc == 0) fs::rename(staged, prefix);
+  }
+  static void TearDownTestSuite() {
+    std::error_code ec;
+    fs::remove_all(root, ec);
   }
   void SetUp() override { ASSERT_EQ(install_rc, 0) << install_log; }
 
@@ -186,6 +193,84 @@ TEST_F(Install, InstalledCaseFindsItsMeshes) {
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_TRUE(fs::is_regular_file(work / "fill" / "wave_flume2d_fill.vtp"));
   EXPECT_TRUE(contains(r.out, "beach")) << r.out;
+  // eagre_piston2d's paddle record is ../validation/eagre/..., beside cases/ in share/swell.
+  const Result e =
+      run({swell().string(), "fill", (data() / "cases" / "eagre_piston2d.yaml").string(), "-o",
+           (work / "eagre").string(), "-t", "1"},
+          work);
+  EXPECT_EQ(e.rc, 0) << e.err;
+  EXPECT_TRUE(fs::is_regular_file(work / "eagre" / "eagre_piston2d_fill.vtp"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// io/resources in this process (a test executable: no install prefix beside it).
+
+struct EnvGuard {
+  std::string name, old;
+  bool had;
+  EnvGuard(const char* n, const char* value) : name(n) {
+    const char* o = std::getenv(n);
+    had = o != nullptr;
+    if (had) old = o;
+    if (value)
+      ::setenv(n, value, 1);
+    else
+      ::unsetenv(n);
+  }
+  ~EnvGuard() {
+    if (had)
+      ::setenv(name.c_str(), old.c_str(), 1);
+    else
+      ::unsetenv(name.c_str());
+  }
+};
+
+TEST(Resources, LookupOrderAndSwellHomeAlone) {
+  {
+    const EnvGuard g("SWELL_HOME", nullptr);
+    const auto roots = data_roots();
+    ASSERT_EQ(roots.size(), 2u);
+    EXPECT_EQ(roots[0].origin, "install prefix");
+    EXPECT_EQ(roots[0].dir, installed_data_dir());
+    EXPECT_EQ(roots[1].origin, "source tree");
+    EXPECT_EQ(roots[1].dir, kSource);
+    // From a test executable (build/tests/) the prefix guess holds nothing: the source tree.
+    const auto f = find_data_file("validation/martin_moyce/validation.yaml");
+    ASSERT_TRUE(f);
+    EXPECT_EQ(*f, kSource / "validation" / "martin_moyce" / "validation.yaml");
+  }
+  {
+    const EnvGuard g("SWELL_HOME", "");  // empty counts as unset
+    EXPECT_EQ(data_roots().size(), 2u);
+  }
+  {
+    const EnvGuard g("SWELL_HOME", "/nonexistent");
+    ASSERT_EQ(data_roots().size(), 1u);
+    std::vector<std::string> tried;
+    EXPECT_FALSE(find_data_file("cases/dambreak2d.yaml", &tried));
+    ASSERT_EQ(tried.size(), 1u);
+    EXPECT_EQ(tried[0], "/nonexistent/cases/dambreak2d.yaml (SWELL_HOME)");
+    try {
+      require_data_file("cases/dambreak2d.yaml", "test");
+      ADD_FAILURE() << "no exception";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_TRUE(contains(e.what(),
+                           "test: cases/dambreak2d.yaml not found (tried "
+                           "/nonexistent/cases/dambreak2d.yaml (SWELL_HOME)); "
+                           "SWELL_HOME is set"))
+          << e.what();
+    }
+  }
+}
+
+TEST(Resources, PathWithin) {
+  EXPECT_TRUE(path_within("/a/b/c.txt", "/a/b"));
+  EXPECT_TRUE(path_within("/a/b/c.txt", "/a/b/"));
+  EXPECT_TRUE(path_within("/a/b/x/../c", "/a/b"));
+  EXPECT_FALSE(path_within("/a/bc/d", "/a/b"));
+  EXPECT_FALSE(path_within("/a/b/../c", "/a/b"));
+  EXPECT_FALSE(path_within("/a", "/a/b"));
+  EXPECT_FALSE(path_within("/a/b", ""));
 }
 
 // `swell run` of the installed dam break with stdout redirected to a file, killed (SIGKILL)
