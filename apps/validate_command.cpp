@@ -15,6 +15,7 @@
 
 #include "apps/case_runner.hpp"
 #include "io/case_file.hpp"
+#include "io/resources.hpp"
 #include "validation/foam.hpp"
 #include "validation/validation_manifest.hpp"
 #include "validation/validation_report.hpp"
@@ -324,6 +325,11 @@ bool target_met(const ManifestTarget& t, double v) {
 
 ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
   const Manifest m = load_manifest(find_manifest(opt.name, opt.search_root));
+  // Nothing is written into an installed tree: committed results are updated in a checkout.
+  if (opt.save_results && path_within(m.results_dir, installed_data_dir()))
+    throw std::invalid_argument("--save-results would write into " + m.results_dir +
+                                ", which is part of the installed share/swell: run it on a "
+                                "source checkout (SWELL_HOME=CHECKOUT) to update its results");
   const std::string out = opt.out_dir.empty() ? "out/validate/" + m.name : opt.out_dir;
   fs::create_directories(out);
   ValidateSummary sum;

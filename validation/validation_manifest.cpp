@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "io/case_file.hpp"
+#include "io/resources.hpp"
 
 namespace swell {
 namespace {
@@ -351,14 +352,20 @@ std::string find_manifest(const std::string& name, const std::string& search_roo
   const fs::path given(name);
   if (fs::is_regular_file(given)) return given.string();
   candidates(given);
-  candidates(fs::path("validation") / name);
   if (!search_root.empty()) candidates(fs::path(search_root) / "validation" / name);
-  std::string list;
+  std::vector<std::string> listed;
   for (const auto& t : tried) {
     if (fs::is_regular_file(t)) return t.string();
-    list += (list.empty() ? "" : ", ") + t.string();
+    listed.push_back(t.string());
   }
-  throw ManifestError("no validation manifest for '" + name + "' (tried " + list + ")");
+  // Then Swell's own manifests: $SWELL_HOME, the install prefix, the source tree.
+  if (given.is_relative() && !name.empty()) {
+    const auto found =
+        find_data_file((fs::path("validation") / name / "validation.yaml").string(), &listed);
+    if (found && fs::is_regular_file(*found)) return found->string();
+  }
+  throw ManifestError("no validation manifest for '" + name + "' (tried " + tried_list(listed) +
+                      "); " + data_roots_hint());
 }
 
 CaseSpec load_manifest_case(const Manifest& m, double dp, double end_time) {
