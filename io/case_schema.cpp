@@ -590,7 +590,7 @@ const char* const kNotes =
     "- 1/2)` with support = 2h (wendland, cubic) or 3h (quintic, gaussian) and h = coefh sqrt(dim) "
     "dp. With the default coefh = 1: wendland or cubic 3 layers in 2D (support 2.83 dp) and 3 in "
     "3D (3.46 dp); quintic or gaussian 4 in 2D (4.24 dp) and 5 in 3D (5.20 dp); coefh = 1.2 in 3D "
-    "(DualSPHysics' usual) needs 4 with wendland (4.16 dp). Fewer layers let fluid see through a "
+    "needs 4 with wendland (4.16 dp). Fewer layers let fluid see through a "
     "thin wall and leak; more only cost particles. The default is 3. `swell run` prints the "
     "number for the case's kernel and h.\n"
     "\n"
