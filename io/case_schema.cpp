@@ -161,7 +161,8 @@ const std::vector<Key>& key_table() {
     {"output", "hdf5", "", "bool", "true", "", "true | false", "write snapshots and metadata to <name>.h5"},
     {"output", "checkpoint_every", "", "number", "0: at every output time", "s", ">= 0",
      "checkpoint interval (restart)"},
-    {"output", "gauge_every", "", "number", "output.every / 10", "s", "> 0", "default gauge interval"},
+    {"output", "gauge_every", "", "number", "output.every / 10 (time.end / 10 without output.every)", "s",
+     "> 0", "default gauge interval"},
 
     // --- watchdog ---
     {"watchdog", "every", "", "integer", "10", "steps", "[1, 1000]", "steps between checks"},
@@ -235,7 +236,7 @@ const std::vector<Key>& key_table() {
      "the motion law"},
     {"bodies[].motion", "start", "", "number", "0", "s", ">= 0", "the motion starts (local time tau = t - start)"},
     {"bodies[].motion", "stop", "", "number", ".inf", "s", "> start", "the body stops (held at its pose)"},
-    {"bodies[].motion", "ramp", "", "number", "0 (wave: 2 T or 2 Tp)", "s", ">= 0",
+    {"bodies[].motion", "ramp", "", "number", "0 (wave: 2 T or 2 Tp; solitary: none)", "s", ">= 0",
      "smoothstep ramp of the velocity (constant laws) or displacement (the others)"},
     // linear
     {"bodies[].motion", "velocity", "linear", "vector", "zero (velocity and/or acceleration required)", "m/s", "",
@@ -292,7 +293,7 @@ const std::vector<Key>& key_table() {
     {"bodies[].motion", "seed", "wave:irregular", "integer", "1", "", ">= 0", "seed of the random phases"},
     {"bodies[].motion", "f_min", "wave:irregular wave:focused", "number", "0.5 / tp", "Hz", "> 0, < f_max",
      "lowest frequency"},
-    {"bodies[].motion", "f_max", "wave:irregular wave:focused", "number", "3 / tp", "Hz", "> 0",
+    {"bodies[].motion", "f_max", "wave:irregular wave:focused", "number", "3 / tp", "Hz", "> 0, > f_min",
      "highest frequency"},
     {"bodies[].motion", "amplitude", "wave:focused", "number", "required", "m", "> 0",
      "linear crest amplitude at the focus"},

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <map>
 #include <regex>
 #include <set>
@@ -605,6 +606,75 @@ TEST(CaseSchema, ChoiceKeysListTheReadersValues) {
       break;
     }
   }
+}
+
+// Numeric ranges written as "> a", ">= a", "[a, b]", "(a, b]", ... are the reader's: values just
+// outside a bound are errors naming the key, a closed bound itself and values just inside it
+// parse.
+TEST(CaseSchema, NumericRangesAreTheReadersRanges) {
+  const std::regex bound(R"(^(>|>=) (-?[0-9.e+-]+)$)");
+  const std::regex interval(R"(^([\[(])(-?[0-9.e+-]+), (-?[0-9.e+-]+)([\])])$)");
+  const auto all = bases();
+  int checked = 0;
+  for (const schema::Key& k : schema::keys()) {
+    if (k.type != "number" && k.type != "integer") continue;
+    const bool integer = k.type == "integer";
+    std::string range(k.allowed);
+    range = range.substr(0, range.find(" ("));  // ">= 0 (0: off)" -> ">= 0"
+    range = range.substr(0, range.find(';'));
+    std::vector<double> refuse, accept;
+    // One side of the range: the bound, whether it is closed, and the side the values lie on.
+    const auto side = [&](double a, bool closed, double sign) {
+      const double eps = integer ? 1.0 : 1e-6 * std::max(1.0, std::abs(a));
+      if (closed) {
+        refuse.push_back(a - sign * eps);
+        accept.push_back(a);
+      } else {
+        refuse.push_back(a);
+        accept.push_back(a + sign * eps);
+      }
+    };
+    std::smatch m;
+    if (std::regex_match(range, m, bound)) {
+      side(std::stod(m[2]), m[1] == ">=", 1.0);
+    } else if (std::regex_match(range, m, interval)) {
+      side(std::stod(m[2]), m[1] == "[", 1.0);
+      side(std::stod(m[3]), m[4] == "]", -1.0);
+    } else {
+      continue;
+    }
+    const std::vector<std::string> forms = split_forms(k.forms);
+    const std::string form = forms.empty() ? "" : forms[0];
+    const std::string key(k.name);
+    const auto text = [](double v) {
+      std::ostringstream o;
+      o << std::setprecision(17) << v;
+      return o.str();
+    };
+    bool agrees = false;
+    std::string why;
+    for (const Base& b : all) {
+      if (b.section != k.section || (!form.empty() && !base_has_form(b, form))) continue;
+      bool ok = true;
+      for (const double v : refuse) {
+        const std::string message = parse_error(with_key(b, key, text(v)));
+        if (!names_path(message, child(b.path, key)))
+          ok = false, why += "\n  " + text(v) + " taken: '" + message + "'";
+      }
+      for (const double v : accept) {
+        const std::string message = parse_error(with_key(b, key, text(v)));
+        if (!message.empty()) ok = false, why += "\n  " + text(v) + " refused: " + message;
+      }
+      if (ok) {
+        agrees = true;
+        break;
+      }
+    }
+    EXPECT_TRUE(agrees) << k.section << "." << key << " (" << k.forms << "): schema range '"
+                        << k.allowed << "' is not the reader's:" << why;
+    ++checked;
+  }
+  EXPECT_GT(checked, 40);
 }
 
 // --- the generated reference
