@@ -62,7 +62,7 @@ const std::vector<Section>& section_table() {
        "Active absorption at a piston (`true`, `false` or this map): U_c = G (eta_T - eta_M)."},
       {"gauges[]", "kind", "pressure height velocity force front runup", "",
        "Measurements written to gauges_<kind>.csv; the keys depend on `kind`."},
-      {"damping[]", "shape", "plane box", "",
+      {"damping[]", "zone shape", "plane box", "",
        "Damping zones (sponge layers): v *= exp(-sigma(s) dt) at depth s in [0, 1] into the zone; "
        "a zone is a `plane` or a `box`."},
       {"damping[].plane", "", "", "", "A plane zone's start plane and direction."},
@@ -503,6 +503,12 @@ std::string cell(std::string_view s) {
   return out.empty() ? "" : out;
 }
 
+std::string joined(const Names& names) {
+  std::string out;
+  for (const std::string_view n : names) out += (out.empty() ? "" : ", ") + std::string(n);
+  return out;
+}
+
 std::string section_title(const Section& s) {
   return s.path.empty() ? std::string("Top level") : "`" + std::string(s.path) + "`";
 }
@@ -516,9 +522,24 @@ void write_row(std::ostringstream& o, const Section& s, const Key& k) {
 void write_section(std::ostringstream& o, const Section& s) {
   o << "## " << section_title(s) << "\n\n" << s.description << "\n";
   if (!s.selector.empty() && s.selector != "kind" && !s.forms.empty()) {
+    // A selector that is a key of the section is written as code; "dim", "zone shape" are not.
+    const bool is_key = has(all_keys(s.path), s.selector);
     o << "\nForms (by "
-      << (s.selector == "dim" ? "the case's dim" : "`" + std::string(s.selector) + "`")
-      << "): " << std::string(s.forms) << ". A key of another form is an error.\n";
+      << (s.selector == "dim" ? "the case's dim"
+          : is_key            ? "`" + std::string(s.selector) + "`"
+                              : std::string(s.selector) + ": the key given")
+      << "): " << std::string(s.forms) << ". A key of another form is an error.";
+    if (!s.subselector.empty()) {
+      // The form with sub-forms: the prefix of the first "form:sub" in the section's keys.
+      std::string parent;
+      for (const Key& k : keys())
+        for (const std::string_view f : split(k.forms, " "))
+          if (parent.empty() && k.section == s.path && f.find(':') != std::string_view::npos)
+            parent = std::string(f.substr(0, f.find(':')));
+      o << " With `" << s.selector << ": " << parent << "` the keys also depend on `"
+        << s.subselector << "`: " << joined(choices(s.path, s.subselector)) << ".";
+    }
+    o << "\n";
   } else if (!s.selector.empty() && !s.forms.empty()) {
     o << "\nKinds (by `" << s.selector << "`): " << std::string(s.forms)
       << ". A key of another kind is an error.\n";
