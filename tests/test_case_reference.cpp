@@ -762,7 +762,7 @@ std::string header_line(const std::string& log, const std::string& start) {
 }
 
 std::string run_log(const std::string& text, const std::string& name) {
-  const fs::path dir = fs::path(SWELL_BINARY_DIR) / "test_out" / name;
+  const fs::path dir = fs::temp_directory_path() / ("swell_reference_" + name);
   fs::remove_all(dir);
   const CaseSpec spec = swell::parse_case_text(text, name + ".yaml");
   swell::RunOptions opt;
