@@ -96,6 +96,50 @@ std::string damping_text(const std::vector<DampingZone>& zones, int dim) {
   return o.str();
 }
 
+// The derived quantities of the run header: each with the formula the set-up and the solver use,
+// its inputs and its value (docs/case_reference.md, "Derived quantities"; checked by
+// tests/test_case_reference.cpp).
+template <int D>
+std::string derived_quantities_text(const CaseSpec& spec, const CaseSetup<D>& setup) {
+  const SolverParams& p = setup.params;
+  const double g = p.gravity.template head<D>().norm();
+  const double support = kernel_support_factor(p.kernel);
+  const double mass = setup.particles.size() > 0 ? setup.particles.mass[0] : 0.0;
+  const bool laminar = p.viscosity == ViscosityModel::Laminar && p.nu > 0.0;
+  const int layers = static_cast<int>(std::ceil(support * p.h / p.dp - 0.5));
+  std::ostringstream o;
+  o << std::setprecision(10);
+  o << "  derived quantities (formula = inputs = value):\n";
+  o << "    h = coefh * sqrt(dim) * dp = " << spec.coefh << " * sqrt(" << D << ") * " << p.dp
+    << " = " << p.h << " m\n";
+  o << "    support = " << support << " h = " << support * p.h << " m (kernel "
+    << kernel_name(p.kernel) << ")\n";
+  o << "    hswl = " << (spec.hswl ? "physics.hswl" : "top - bottom fluid particle + dp") << " = "
+    << setup.hswl << " m\n";
+  o << "    c0 = coefsound * sqrt(|g| * hswl) = " << spec.coefsound << " * sqrt(" << g << " * "
+    << setup.hswl << ") = " << p.c0 << " m/s\n";
+  o << "    B = c0^2 * rho0 / gamma = " << p.c0 << "^2 * " << p.rho0 << " / " << p.gamma << " = "
+    << p.tait_b() << " Pa\n";
+  o << "    mass = rho0 * dp^dim = " << p.rho0 << " * " << p.dp << "^" << D << " = " << mass
+    << " kg\n";
+  o << "    dt = cfl * min(dt_f, dt_cv" << (laminar ? ", dt_nu" : "") << "), cfl = " << p.cfl
+    << ": dt_f = sqrt(h / max|a|), dt_cv = h / (max c + max_ab h |v_ab.r_ab| / (r_ab^2 + "
+       "eta^2)), eta^2 = 0.01 h^2 = "
+    << p.eta2() << " m^2";
+  if (laminar) o << ", dt_nu = 0.125 h^2 / nu = " << 0.125 * p.h * p.h / p.nu << " s";
+  o << "\n";
+  o << "    dt at rest: cfl * h / c0 = " << p.cfl * p.h / p.c0
+    << " s, cfl * sqrt(h / |g|) = " << p.cfl * std::sqrt(p.h / g) << " s\n";
+  o << "    wall layers for the full support: ceil(support / dp - 1/2) = " << layers;
+  std::string thin;
+  for (const BodySpec& b : spec.bodies)
+    if (b.kind == BodySpec::Kind::Boundary && b.layers < layers)
+      thin += (thin.empty() ? "" : ", ") + b.name + " " + std::to_string(b.layers);
+  if (!thin.empty()) o << " (fewer: " << thin << ")";
+  o << "\n";
+  return o.str();
+}
+
 template <int D>
 RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const RunSummary& sum) {
   RunMetadata m;
@@ -163,6 +207,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
                                  : " (from the case file)")
         << "\n";
   }
+  log << derived_quantities_text(spec, setup);
   {
     const auto& pr = setup.params;
     log << "  walls: " << boundary_name(pr.boundary);
