@@ -20,18 +20,20 @@ matplotlib.rcParams["path.simplify_threshold"] = 0.5
 
 MAX_SVG_BYTES = 1_000_000
 
+# Runs: filled-white markers; references: circles, crosses and pluses, so a reference's points
+# never look like a run's marker.
 RUN_STYLES = [
-    dict(color="#0072B2", ls="-", marker="o"),
-    dict(color="#D55E00", ls="--", marker="s"),
-    dict(color="#009E73", ls="-.", marker="^"),
-    dict(color="#CC79A7", ls=(0, (1, 1.2)), marker="D"),
-    dict(color="#E69F00", ls=(0, (6, 1.5, 1, 1.5, 1, 1.5)), marker="v"),
-    dict(color="#56B4E9", ls=(0, (9, 2.5)), marker="P"),
+    dict(color="#0072B2", ls="-", marker="s"),
+    dict(color="#D55E00", ls="--", marker="^"),
+    dict(color="#009E73", ls="-.", marker="D"),
+    dict(color="#CC79A7", ls=(0, (1, 1.2)), marker="v"),
+    dict(color="#E69F00", ls=(0, (6, 1.5, 1, 1.5, 1, 1.5)), marker="P"),
+    dict(color="#56B4E9", ls=(0, (9, 2.5)), marker="*"),
 ]
 REF_STYLES = [
     dict(color="black", ls="-", marker="o"),
-    dict(color="0.40", ls="--", marker="s"),
-    dict(color="0.55", ls=":", marker="^"),
+    dict(color="0.40", ls="--", marker="x"),
+    dict(color="0.55", ls=":", marker="+"),
 ]
 
 

@@ -78,8 +78,8 @@ def draw(plot, out_dir):
             s = REF_STYLES[n_ref % len(REF_STYLES)]
             n_ref += 1
             if len(t) < 60:  # a table of points: open markers, no line
-                ax.plot(t, v, ls="none", marker=s["marker"], ms=5, mfc="white", mec=s["color"],
-                        mew=1.0, color=s["color"], label=line["label"], zorder=4)
+                ax.plot(t, v, ls="none", marker=s["marker"], ms=6, mfc="none", mec=s["color"],
+                        mew=1.3, color=s["color"], label=line["label"], zorder=4)
             else:
                 ax.plot(t, v, color=s["color"], ls=s["ls"], lw=1.1, label=line["label"],
                         zorder=3)
