@@ -5,6 +5,7 @@
 // run the real report path with validation/plot_validation.py and are skipped, saying why,
 // where no python3 with matplotlib is installed.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -238,6 +239,44 @@ TEST(Plots, CompareLegendsFromRunInfoAndReferenceLabel) {
   for (const char* label : {"SPH dp 10 mm", "interFoam 5 mm cells", "experiment (wave lab 2026)",
                             "eta [m] x 20", "t [s]"})
     EXPECT_NE(text.find(label), std::string::npos) << label;
+}
+
+// The other figures: `swell bench --sweep`'s scaling plot and the Synolakis runup plot, drawn
+// from the committed tables into a scratch folder.
+TEST(Plots, BenchAndRunupScriptsWriteSvgWithUnitsAndLabels) {
+  std::string why;
+  if (!plots_possible(&why)) GTEST_SKIP() << "plot checks skipped: " << why;
+  const std::string python = find_plot_python();
+  const fs::path src(SWELL_SOURCE_DIR);
+  const fs::path d = fs::path(SWELL_BINARY_DIR) / "test_plots" / "scripts";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const std::string scaling = "'" + python + "' '" + (src / "bench" / "plot_scaling.py").string() +
+                              "' '" + (src / "bench" / "results" / "scaling.csv").string() + "' '" +
+                              (d / "scaling.png").string() + "'";
+  ASSERT_EQ(std::system(scaling.c_str()), 0) << scaling;
+  ASSERT_TRUE(fs::exists(d / "scaling.svg"));
+  const std::string bench = slurp(d / "scaling.svg");
+  for (const char* text : {"wall time per particle-step [ns]", "particles N [count, log scale]",
+                           "interaction phase, per particle"})
+    EXPECT_NE(bench.find(text), std::string::npos) << text;
+
+  const fs::path lab = src / ".." / "shared" / "reference" / "synolakis_1987_runup_lab.csv";
+  if (!fs::exists(lab)) GTEST_SKIP() << "runup plot skipped: no " << lab;
+  fs::copy_file(src / "validation" / "synolakis" / "results" / "runup_table.csv",
+                d / "runup_table.csv");
+  const std::string runup =
+      "'" + python + "' '" + (src / "validation" / "synolakis" / "runup_table.py").string() +
+      "' --lab '" + lab.string() + "' --replot '" + (d / "runup_table.csv").string() + "'";
+  ASSERT_EQ(std::system(runup.c_str()), 0) << runup;
+  const std::string svg = slurp(d / "runup.svg");
+  for (const char* text : {"Swell SPH dp 15 mm, R max", "experiment (Synolakis 1987, lab points)",
+                           "H/d, wave height / depth [-]", "R/d, maximum runup / depth [-]"})
+    EXPECT_NE(svg.find(text), std::string::npos) << text;
+  // Bad input: exit 2 with the reason.
+  const std::string bad = runup.substr(0, runup.find(" --replot")) + " --replot '" +
+                          (d / "missing.csv").string() + "' 2> /dev/null";
+  EXPECT_EQ(WEXITSTATUS(std::system(bad.c_str())), 2);
 }
 
 }  // namespace

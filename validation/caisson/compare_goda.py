@@ -173,6 +173,8 @@ def main(argv):
                     help="the run's particle spacing [m] for the legend (default: the run's "
                     "run_info.yaml, else the case file's dp)")
     args = ap.parse_args(argv)
+    if args.dp is not None and not args.dp > 0:
+        ap.error("--dp: expected a particle spacing > 0 [m], got %g" % args.dp)
     t0, t1 = (float(v) for v in args.window.split(","))
     s0, s1 = (float(v) for v in args.still.split(","))
     os.makedirs(args.out, exist_ok=True)

@@ -77,8 +77,11 @@ def read_table(path):
         for r in reader:
             rows.append({k: (float(v) if k not in ("breaking_in_lab", "wall_s") else v)
                          for k, v in r.items()})
-    if not rows:
-        raise SystemExit(f"{path}: no rows")
+    need = {"H_over_d", "dp_m", "R_over_d", "R_corr_over_d"}
+    if not rows or not need <= set(rows[0]):
+        sys.stderr.write(f"{path}: expected a runup_table.csv with rows and the columns "
+                         f"{', '.join(sorted(need))}\n")
+        sys.exit(2)
     return rows
 
 
@@ -126,6 +129,8 @@ def main():
     a = ap.parse_args()
     lab_h, lab_r = read_lab(a.lab)
     if a.replot:
+        if not os.path.isfile(a.replot):
+            ap.error(f"--replot {a.replot}: no such file (a runup_table.csv written earlier)")
         out = os.path.dirname(os.path.abspath(a.replot))
         plot(read_table(a.replot), lab_h, lab_r, os.path.join(out, "runup.png"))
         return
