@@ -18,6 +18,7 @@
 
 #include "apps/case_runner.hpp"
 #include "apps/gauge_set.hpp"
+#include "apps/run_log.hpp"
 #include "apps/stop_signals.hpp"
 #include "bc/absorption.hpp"
 #include "io/case_identity.hpp"
@@ -115,8 +116,7 @@ RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const
 }
 
 template <int D>
-RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
-  std::ostream& log = opt.log ? *opt.log : std::cout;
+RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const std::string out_dir = opt.out_dir.empty() ? "out/" + spec.name : opt.out_dir;
   const fs::path out(out_dir);
@@ -215,6 +215,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   // The set-up worked: only now is an earlier run's output removed (--overwrite).
   if (!opt.restart && opt.overwrite) remove_run_files(out_dir);
   fs::create_directories(out / "vtk");
+  log.attach(out / "run.log", opt.restart);  // the header so far, then every line
 
   // Fresh start or continuation from the last valid checkpoint.
   std::map<std::string, double> schedule;
@@ -431,18 +432,22 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
       if (watchdog.due(sim->steps())) watch();
       outputs(sim->time() >= t_end);
       const auto now = std::chrono::steady_clock::now();
-      if (opt.progress && (now - last_progress > std::chrono::seconds(2) || sim->time() >= t_end)) {
+      if (now - last_progress > std::chrono::seconds(2) || sim->time() >= t_end) {
         last_progress = now;
         const double el = std::chrono::duration<double>(now - loop0).count();
         const double rate =
             static_cast<double>(sim->steps() - step0) * n_total / std::max(el, 1e-9);
         const double eta = el / (sim->time() - time0) * (t_end - sim->time());
-        std::fprintf(
-            stderr,
-            "%st = %.4f / %.4f s | step %ld | dt %.3e s | %.2f M particle-steps/s | ETA %s%s",
-            tty ? "\r" : "", sim->time(), t_end, sim->steps(), sim->dt(), rate / 1e6,
-            format_duration(eta).c_str(), tty ? "   " : "\n");
-        std::fflush(stderr);
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "t = %.4f / %.4f s | step %ld | dt %.3e s | %.2f M particle-steps/s | ETA %s",
+                      sim->time(), t_end, sim->steps(), sim->dt(), rate / 1e6,
+                      format_duration(eta).c_str());
+        log.file_line(line);
+        if (opt.progress) {
+          std::fprintf(stderr, "%s%s%s", tty ? "\r" : "", line, tty ? "   " : "\n");
+          std::fflush(stderr);
+        }
       }
     }
   } catch (const InstabilityError& e) {
@@ -519,9 +524,25 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
 }  // namespace
 
 RunSummary run_case(const CaseSpec& spec, const RunOptions& options) {
-  if (spec.dim == 2) return run_dim<2>(spec, options);
-  if (spec.dim == 3) return run_dim<3>(spec, options);
-  throw std::invalid_argument(spec.file + ": dim must be 2 or 3");
+  if (spec.dim != 2 && spec.dim != 3)
+    throw std::invalid_argument(spec.file + ": dim must be 2 or 3");
+  RunLog log(options.log ? *options.log : std::cout);
+  // How the run ended goes into run.log too (if the run got that far; the caller prints it).
+  auto ended = [&](const std::string& how) {
+    if (log.attached()) log.file_line(how.c_str());
+  };
+  try {
+    return spec.dim == 2 ? run_dim<2>(spec, options, log) : run_dim<3>(spec, options, log);
+  } catch (const Interrupted& e) {
+    ended(std::string("swell: ") + e.what());
+    throw;
+  } catch (const InstabilityError& e) {
+    ended(std::string("error: the run went unstable: ") + e.what());
+    throw;
+  } catch (const std::exception& e) {
+    ended(std::string("error: ") + e.what());
+    throw;
+  }
 }
 
 }  // namespace swell

@@ -8,15 +8,18 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include "apps/case_runner.hpp"
 #include "io/case_file.hpp"
+#include "io/resources.hpp"
 #include "validation/foam.hpp"
 #include "validation/validation_manifest.hpp"
 #include "validation/validation_report.hpp"
+#include "validation/wave_theory.hpp"
 
 namespace swell {
 namespace {
@@ -351,6 +354,11 @@ bool target_met(const ManifestTarget& t, double v) {
 
 ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
   const Manifest m = load_manifest(find_manifest(opt.name, opt.search_root));
+  // Nothing is written into an installed tree: committed results are updated in a checkout.
+  if (opt.save_results && path_within(m.results_dir, installed_data_dir()))
+    throw std::invalid_argument("--save-results would write into " + m.results_dir +
+                                ", which is part of the installed share/swell: run it on a "
+                                "source checkout (SWELL_HOME=CHECKOUT) to update its results");
   const std::string out = opt.out_dir.empty() ? "out/validate/" + m.name : opt.out_dir;
   fs::create_directories(out);
   ValidateSummary sum;
@@ -434,6 +442,31 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
     return it->second;
   };
 
+  // Theory references (validation/wave_theory.hpp): one CSV per gauge in OUT/theory/, sampled
+  // at the case's gauge interval (else 1/200 of the run) to the validated end time.
+  std::optional<CaseSpec> theory_case;
+  auto write_theory = [&](const std::string& gauge) {
+    if (!theory_case) theory_case = load_manifest_case(m, 0.0, opt.end_time);
+    const CaseSpec& c = *theory_case;
+    const double dt = c.gauge_every > 0.0 ? c.gauge_every : c.t_end / 200.0;
+    Series th;
+    try {
+      th = paddle_theory_series(c, gauge, dt, c.t_end);
+    } catch (const std::invalid_argument& e) {
+      throw ManifestError(m.file + ": references: " + e.what());
+    }
+    const fs::path dir = fs::path(out) / "theory";
+    fs::create_directories(dir);
+    const fs::path file = dir / (safe_file_name(gauge) + ".csv");
+    std::ofstream f(file);
+    f << "# swell validate " << m.name << ": wave-paddle theory at gauge " << gauge
+      << " (validation/wave_theory.hpp)\ntime [s]," << gauge << " [m]\n";
+    f.precision(10);
+    for (std::size_t i = 0; i < th.t.size(); ++i) f << th.t[i] << "," << th.v[i] << "\n";
+    if (!f) throw std::runtime_error("cannot write " + file.string());
+    return file.string();
+  };
+
   std::vector<MetricRow> rows;
   std::vector<PlotSpec> plots;
   for (const auto& g : m.gauges) {
@@ -452,6 +485,15 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
     std::vector<std::pair<std::string, Series>> refs;  // (reference name, normalised series)
     for (const auto& [ref_name, column] : g.columns) {
       const ManifestReference* ref = m.reference(ref_name);
+      if (!ref->theory.empty()) {
+        // The case's paddle theory at gauge `column`, written beside the report (the plot
+        // reads it from there) in the gauges' units, then normalised like a run.
+        const std::string file = write_theory(column);
+        refs.emplace_back(ref_name,
+                          scaled(table(file).series(column), norm.time_scale, norm.value_scale));
+        plot.lines.push_back({ref->label, file, column, norm.time_scale, norm.value_scale, false});
+        continue;
+      }
       refs.emplace_back(ref_name, table(ref->file).series(column));
       plot.lines.push_back({ref->label, ref->file, column, 1.0, 1.0, true});
     }

@@ -14,6 +14,7 @@ import sys
 
 # The shared figure style (validation/plot_style.py, beside this folder in the source tree and
 # in an installed share/swell).
+sys.dont_write_bytecode = True  # no __pycache__ beside the script (an installed tree)
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "validation"))
 from plot_style import RUN_STYLES as STYLES, save  # noqa: E402  (sets the Agg backend)
 

@@ -1,5 +1,6 @@
 #include "validation/metrics.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -345,6 +346,16 @@ GaugeMetrics compute_metrics(const Series& s, const Series& ref, const MetricReq
     m.ref_filtered_peak = boxcar_peak(ref, req.peak_window, req.filter);
     m.filtered_peak_error = relative(m.filtered_peak.value, m.ref_filtered_peak.value);
   }
+  if (req.harmonic_period > 0.0) {
+    const FirstHarmonic a = first_harmonic(s, req.harmonic_period, req.harmonic_window);
+    const FirstHarmonic r = first_harmonic(ref, req.harmonic_period, req.harmonic_window);
+    m.amplitude = a.amplitude;
+    m.ref_amplitude = r.amplitude;
+    m.amplitude_error = relative(a.amplitude, r.amplitude);
+    double d = (a.phase - r.phase) / (2.0 * M_PI);
+    d -= std::floor(d + 0.5);  // to [-0.5, 0.5)
+    m.phase_error = d;
+  }
 
   // Range-normalised errors, and no relative ones for a reference that crosses zero.
   m.crosses_zero = crosses_zero(ref, req.window);
@@ -369,6 +380,28 @@ GaugeMetrics compute_metrics(const Series& s, const Series& ref, const MetricReq
     m.peak_error = m.impulse_error = m.mean_error = m.filtered_peak_error = kNaN;
   }
   return m;
+}
+
+FirstHarmonic first_harmonic(const Series& s, double period, Window w) {
+  FirstHarmonic h;
+  std::vector<double> t, v;
+  for (std::size_t i = 0; i < s.t.size(); ++i)
+    if (w.contains(s.t[i]) && std::isfinite(s.v[i])) t.push_back(s.t[i]), v.push_back(s.v[i]);
+  if (t.size() < 3 || !(period > 0.0) || t.back() - t.front() < 0.5 * period) return h;
+  const double omega = 2.0 * M_PI / period;
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(t.size()), 3);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(t.size()));
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const auto r = static_cast<Eigen::Index>(i);
+    a(r, 0) = 1.0;
+    a(r, 1) = std::cos(omega * t[i]);
+    a(r, 2) = std::sin(omega * t[i]);
+    b[r] = v[i];
+  }
+  const Eigen::Vector3d c = a.colPivHouseholderQr().solve(b);
+  h.amplitude = std::hypot(c[1], c[2]);
+  h.phase = std::atan2(c[2], c[1]);
+  return h;
 }
 
 const std::vector<std::string>& metric_names() {
@@ -396,6 +429,10 @@ const std::vector<std::string>& metric_names() {
                                                  "filtered_peak",
                                                  "ref_filtered_peak",
                                                  "filtered_peak_error",
+                                                 "amplitude",
+                                                 "ref_amplitude",
+                                                 "amplitude_error",
+                                                 "phase_error",
                                                  "crosses_zero",
                                                  "ref_range",
                                                  "mean_abs_range_error",
@@ -432,6 +469,10 @@ double metric_value(const GaugeMetrics& m, const std::string& name) {
   if (name == "filtered_peak") return m.filtered_peak.value;
   if (name == "ref_filtered_peak") return m.ref_filtered_peak.value;
   if (name == "filtered_peak_error") return m.filtered_peak_error;
+  if (name == "amplitude") return m.amplitude;
+  if (name == "ref_amplitude") return m.ref_amplitude;
+  if (name == "amplitude_error") return m.amplitude_error;
+  if (name == "phase_error") return m.phase_error;
   if (name == "crosses_zero") return m.crosses_zero ? 1.0 : 0.0;
   if (name == "ref_range") return m.ref_range;
   if (name == "mean_abs_range_error") return m.mean_abs_range_error;

@@ -23,6 +23,7 @@ import math
 import os
 import sys
 
+sys.dont_write_bytecode = True  # no __pycache__ beside the script (an installed tree)
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_style import REF_STYLES, RUN_STYLES, save  # noqa: E402  (sets the Agg backend)
 

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/resources.hpp"
+
 namespace swell {
 namespace {
 
@@ -49,21 +51,11 @@ bool python_has_matplotlib(const std::string& python) {
   return std::system(cmd.c_str()) == 0;
 }
 
+// $SWELL_PLOT_SCRIPT, else validation/plot_validation.py of Swell's data (io/resources).
 std::string find_plot_script() {
   if (const char* env = std::getenv("SWELL_PLOT_SCRIPT"); env && fs::exists(env)) return env;
-  std::vector<fs::path> bases;
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    fs::path p = exe.parent_path();
-    for (int up = 0; up < 4 && !p.empty(); ++up, p = p.parent_path()) bases.push_back(p);
-  }
-  bases.push_back(fs::current_path());
-  for (const auto& b : bases) {
-    const fs::path s = b / "validation" / "plot_validation.py";
-    if (fs::exists(s)) return s.string();
-  }
-  return "";
+  const auto found = find_data_file("validation/plot_validation.py");
+  return found ? found->string() : "";
 }
 
 }  // namespace
@@ -223,8 +215,8 @@ bool make_plots(const std::vector<PlotSpec>& plots, const std::string& plot_dir,
   if (script.empty()) {
     if (why)
       *why =
-          "validation/plot_validation.py not found (set SWELL_PLOT_SCRIPT); the plot "
-          "specification is in " +
+          "validation/plot_validation.py not found (set SWELL_HOME or SWELL_PLOT_SCRIPT); the "
+          "plot specification is in " +
           spec;
     return false;
   }

@@ -48,6 +48,7 @@ import sys
 
 import numpy as np
 
+sys.dont_write_bytecode = True  # no __pycache__ beside the script (an installed tree)
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from plot_style import length_text, save  # noqa: E402  (validation/plot_style.py; Agg backend)
 

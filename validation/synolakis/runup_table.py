@@ -86,6 +86,7 @@ def read_table(path):
 
 
 def plot(rows, lab_h, lab_r, png):
+    sys.dont_write_bytecode = True  # no __pycache__ beside the script (an installed tree)
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
     from plot_style import length_text, save  # sets the Agg backend
     import matplotlib.pyplot as plt
