@@ -120,6 +120,8 @@ int main(int argc, char** argv) {
   compare->add_option("--reference", cmp.reference, "reference CSV table, or a run folder")
       ->required();
   compare->add_option("--labels", cmp_labels, "comma-separated labels, one per run");
+  compare->add_option("--reference-label", cmp.reference_label,
+                      "legend text of the reference (e.g. \"experiment (Lobovsky 2014)\")");
   compare->add_option("-o,--out", cmp.out_dir, "output folder")->required();
   compare->add_option("--map", cmp.map, "GAUGE=COLUMN: reference column of a gauge (repeatable)");
   compare->add_option("--time-scale", cmp.time_scale, "normalise run times: t * scale")
