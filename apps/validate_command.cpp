@@ -49,7 +49,7 @@ void write_output_info(const std::string& dir, const std::string& kind, const Pr
 std::string made_by(const RunInfo& i) {
   if (i.provenance.empty()) return "not recorded";
   const Provenance& p = i.provenance.back();
-  if (!p.recovered.empty()) return "recovered: " + p.recovered;
+  if (!p.recovered.empty()) return "recovered " + p.recovered.substr(0, p.recovered.find(';'));
   std::string c = p.commit.size() > 12 && p.commit.find_first_not_of("0123456789abcdef") >= 12
                       ? p.commit.substr(0, 12) + (p.commit.ends_with("-dirty") ? "-dirty" : "")
                       : p.commit;
