@@ -4,6 +4,7 @@
 // the time taken. For checking a geometry before running it.
 #pragma once
 
+#include <cmath>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -29,7 +30,11 @@ struct FluidVolumeCheck {
   double structures = 0.0;  // the structures' part of the region (counted, see spacing)
   double spacing = 0.0;     // of the lattice that counted it; 0: no structure in the region
   double water() const { return region - structures; }        // what the particles should fill
-  double void_volume() const { return water() - particles; }  // staircase and wall gaps
+  // Staircase and wall gaps; exactly 0 when the difference is only rounding.
+  double void_volume() const {
+    const double v = water() - particles;
+    return std::abs(v) <= 1e-12 * std::abs(water()) ? 0.0 : v;
+  }
 };
 
 struct FillSummary {
