@@ -5,10 +5,19 @@
 set(SWELL_GIT_COMMIT "unknown")
 find_program(GIT_EXECUTABLE git)
 if(GIT_EXECUTABLE)
+  # The source tree must be the work tree's top (a tarball unpacked inside another checkout
+  # is not that checkout's commit).
+  execute_process(COMMAND ${GIT_EXECUTABLE} -C ${SRC} rev-parse --show-toplevel
+                  OUTPUT_VARIABLE top RESULT_VARIABLE rc_top ERROR_QUIET
+                  OUTPUT_STRIP_TRAILING_WHITESPACE)
   execute_process(COMMAND ${GIT_EXECUTABLE} -C ${SRC} rev-parse HEAD
                   OUTPUT_VARIABLE commit RESULT_VARIABLE rc ERROR_QUIET
                   OUTPUT_STRIP_TRAILING_WHITESPACE)
-  if(rc EQUAL 0 AND commit MATCHES "^[0-9a-f]+$")
+  get_filename_component(src_real ${SRC} REALPATH)
+  if(rc_top EQUAL 0)
+    get_filename_component(top ${top} REALPATH)
+  endif()
+  if(rc EQUAL 0 AND rc_top EQUAL 0 AND top STREQUAL src_real AND commit MATCHES "^[0-9a-f]+$")
     set(SWELL_GIT_COMMIT "${commit}")
     # Tracked files changed (staged or not); untracked files do not count.
     execute_process(COMMAND ${GIT_EXECUTABLE} -C ${SRC} status --porcelain --untracked-files=no
