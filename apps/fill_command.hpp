@@ -29,7 +29,7 @@ struct FluidVolumeCheck {
   double region = 0.0;      // exact region volume, NaN if unknown
   double structures = 0.0;  // the structures' part of the region (counted, see spacing)
   double spacing = 0.0;     // of the lattice that counted it; 0: no structure in the region
-  double water() const { return region - structures; }        // what the particles should fill
+  double water() const { return region - structures; }  // what the particles should fill
   // Staircase and wall gaps; exactly 0 when the difference is only rounding.
   double void_volume() const {
     const double v = water() - particles;
