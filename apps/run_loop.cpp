@@ -228,7 +228,14 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   info.resolution = spec.dp;
   info.size = static_cast<long>(n_total);
   info.date = utc_minutes_now();
-  if (opt.restart) info.provenance = read_run_info(out_dir).provenance;
+  if (opt.restart) {
+    try {
+      info.provenance = read_run_info(out_dir).provenance;
+    } catch (const std::runtime_error& e) {
+      // An unreadable record must not stop the restart: say so, keep this command's entry.
+      log << "  warning: earlier provenance not kept: " << e.what() << "\n";
+    }
+  }
   info.provenance.push_back(prov);
   info.note = "running";
   write_run_info(out_dir, info);
