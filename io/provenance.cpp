@@ -81,6 +81,11 @@ std::string process_command_line() {
   return out;
 }
 
+std::string version_text() {
+  return std::string("swell ") + SWELL_VERSION + " (commit " + SWELL_GIT_COMMIT + "; " +
+         SWELL_COMPILER + "; " + SWELL_BUILD_TYPE + ": " + SWELL_BUILD_FLAGS + ")";
+}
+
 Provenance capture_provenance() {
   Provenance p;
   p.version = SWELL_VERSION;

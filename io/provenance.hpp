@@ -31,6 +31,9 @@ struct Provenance {
 // the current UTC time, gethostname() and /proc/cpuinfo. Call it after the thread count is set.
 Provenance capture_provenance();
 
+// `swell --version`: "swell 0.2.0 (commit <id>; GNU 12.2.0; Release: <flags>)".
+std::string version_text();
+
 // `key: value` lines (YAML block mapping) indented by `indent` spaces; strings double-quoted.
 std::string provenance_yaml(const Provenance& p, int indent);
 

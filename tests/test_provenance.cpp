@@ -14,6 +14,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -324,6 +325,18 @@ TEST_F(Provenance17, ProbeCompareFillFoamWriteIt) {
   SWELL_OK(std::vector<std::string>({"foam", case_, "-o", foam.string()}), root_);
   expect_complete(provenance_of(foam).at(0), "foam");
   EXPECT_EQ(read_run_info(foam.string()).kind, "openfoam");
+}
+
+TEST(Provenance, VersionNamesTheCommitAndBuild) {
+  const fs::path root = fresh_root("version");
+  const std::string cmd = kSwell + " --version > " + (root / "v.txt").string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string v = read_text(root / "v.txt");
+  const Provenance p = capture_provenance();
+  EXPECT_EQ(v.rfind("swell " + p.version + " (commit ", 0), 0u) << v;
+  if (built_from_git())
+    EXPECT_TRUE(std::regex_search(v, std::regex("commit [0-9a-f]{7,40}(-dirty)?;"))) << v;
+  EXPECT_NE(v.find("-march="), std::string::npos) << v;
 }
 
 TEST(Provenance, WavesCommandsWriteItInTheirCsv) {
