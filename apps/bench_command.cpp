@@ -18,6 +18,7 @@
 #include "apps/case_runner.hpp"
 #include "bench/bench_run.hpp"
 #include "io/case_file.hpp"
+#include "io/resources.hpp"
 #include "validation/validation_report.hpp"
 
 namespace swell {
@@ -67,8 +68,8 @@ fs::path self_exe() {
   return exe;
 }
 
-// bench/ of the source tree: given, else next to the executable (build/ under the source),
-// else under the working directory.
+// The folder holding the benchmark cases: given, else bench/ of Swell's data (io/resources:
+// $SWELL_HOME, the install prefix's share/swell, the source tree).
 fs::path find_bench_dir(const std::string& given) {
   if (!given.empty()) {
     if (!fs::exists(fs::path(given) / "cases" / "b2d.yaml"))
@@ -76,18 +77,11 @@ fs::path find_bench_dir(const std::string& given) {
                                   "/cases/b2d.yaml");
     return given;
   }
-  std::vector<fs::path> bases;
-  fs::path p = self_exe().parent_path();
-  for (int up = 0; up < 4 && !p.empty(); ++up, p = p.parent_path()) bases.push_back(p);
-  bases.push_back(fs::current_path());
-#ifdef SWELL_SOURCE_DIR
-  bases.push_back(SWELL_SOURCE_DIR);  // the source tree this executable was built from
-#endif
-  for (const auto& b : bases)
-    if (fs::exists(b / "bench" / "cases" / "b2d.yaml")) return b / "bench";
-  throw std::invalid_argument(
-      "bench: cannot find bench/cases/b2d.yaml next to the executable, in the working "
-      "directory or in the source tree; pass --bench-dir");
+  std::vector<std::string> tried;
+  if (const auto f = find_data_file("bench/cases/b2d.yaml", &tried))
+    return f->parent_path().parent_path();
+  throw std::invalid_argument("bench: cannot find the benchmark cases (tried " + tried_list(tried) +
+                              "); pass --bench-dir, or " + data_roots_hint());
 }
 
 struct Measurement {

@@ -18,6 +18,7 @@
 
 #include "apps/case_runner.hpp"
 #include "apps/gauge_set.hpp"
+#include "apps/run_log.hpp"
 #include "apps/stop_signals.hpp"
 #include "bc/absorption.hpp"
 #include "io/case_identity.hpp"
@@ -97,6 +98,50 @@ std::string damping_text(const std::vector<DampingZone>& zones, int dim) {
   return o.str();
 }
 
+// The derived quantities of the run header: each with the formula the set-up and the solver use,
+// its inputs and its value (docs/case_reference.md, "Derived quantities"; checked by
+// tests/test_case_reference.cpp).
+template <int D>
+std::string derived_quantities_text(const CaseSpec& spec, const CaseSetup<D>& setup) {
+  const SolverParams& p = setup.params;
+  const double g = p.gravity.template head<D>().norm();
+  const double support = kernel_support_factor(p.kernel);
+  const double mass = setup.particles.size() > 0 ? setup.particles.mass[0] : 0.0;
+  const bool laminar = p.viscosity == ViscosityModel::Laminar && p.nu > 0.0;
+  const int layers = static_cast<int>(std::ceil(support * p.h / p.dp - 0.5));
+  std::ostringstream o;
+  o << std::setprecision(10);
+  o << "  derived quantities (formula = inputs = value):\n";
+  o << "    h = coefh * sqrt(dim) * dp = " << spec.coefh << " * sqrt(" << D << ") * " << p.dp
+    << " = " << p.h << " m\n";
+  o << "    support = " << support << " h = " << support * p.h << " m (kernel "
+    << kernel_name(p.kernel) << ")\n";
+  o << "    hswl = " << (spec.hswl ? "physics.hswl" : "top - bottom fluid particle + dp") << " = "
+    << setup.hswl << " m\n";
+  o << "    c0 = coefsound * sqrt(|g| * hswl) = " << spec.coefsound << " * sqrt(" << g << " * "
+    << setup.hswl << ") = " << p.c0 << " m/s\n";
+  o << "    B = c0^2 * rho0 / gamma = " << p.c0 << "^2 * " << p.rho0 << " / " << p.gamma << " = "
+    << p.tait_b() << " Pa\n";
+  o << "    mass = rho0 * dp^dim = " << p.rho0 << " * " << p.dp << "^" << D << " = " << mass
+    << (D == 2 ? " kg/m (per metre of depth)\n" : " kg\n");
+  o << "    dt = cfl * min(dt_f, dt_cv" << (laminar ? ", dt_nu" : "") << "), cfl = " << p.cfl
+    << ": dt_f = sqrt(h / max|a|), dt_cv = h / (max c + max_ab h |v_ab.r_ab| / (r_ab^2 + "
+       "eta^2)), eta^2 = 0.01 h^2 = "
+    << p.eta2() << " m^2";
+  if (laminar) o << ", dt_nu = 0.125 h^2 / nu = " << 0.125 * p.h * p.h / p.nu << " s";
+  o << "\n";
+  o << "    dt at rest: cfl * h / c0 = " << p.cfl * p.h / p.c0
+    << " s, cfl * sqrt(h / |g|) = " << p.cfl * std::sqrt(p.h / g) << " s\n";
+  o << "    wall layers for the full support: ceil(support / dp - 1/2) = " << layers;
+  std::string thin;
+  for (const BodySpec& b : spec.bodies)
+    if (b.kind == BodySpec::Kind::Boundary && b.layers < layers)
+      thin += (thin.empty() ? "" : ", ") + b.name + " " + std::to_string(b.layers);
+  if (!thin.empty()) o << " (fewer: " << thin << ")";
+  o << "\n";
+  return o.str();
+}
+
 template <int D>
 RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const RunSummary& sum,
                           const Provenance& prov) {
@@ -119,8 +164,7 @@ RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const
 }
 
 template <int D>
-RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
-  std::ostream& log = opt.log ? *opt.log : std::cout;
+RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const std::string out_dir = opt.out_dir.empty() ? "out/" + spec.name : opt.out_dir;
   const fs::path out(out_dir);
@@ -168,6 +212,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
                                  : " (from the case file)")
         << "\n";
   }
+  log << derived_quantities_text(spec, setup);
   {
     const auto& pr = setup.params;
     log << "  walls: " << boundary_name(pr.boundary);
@@ -220,6 +265,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
   // The set-up worked: only now is an earlier run's output removed (--overwrite).
   if (!opt.restart && opt.overwrite) remove_run_files(out_dir);
   fs::create_directories(out / "vtk");
+  log.attach(out / "run.log", opt.restart);  // the header so far, then every line
   // run_info.yaml: how this folder was made, written now (a run that dies still says it) and
   // again at the end; a restart adds its own entry after the earlier ones.
   RunInfo info;
@@ -460,18 +506,22 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
       if (watchdog.due(sim->steps())) watch();
       outputs(sim->time() >= t_end);
       const auto now = std::chrono::steady_clock::now();
-      if (opt.progress && (now - last_progress > std::chrono::seconds(2) || sim->time() >= t_end)) {
+      if (now - last_progress > std::chrono::seconds(2) || sim->time() >= t_end) {
         last_progress = now;
         const double el = std::chrono::duration<double>(now - loop0).count();
         const double rate =
             static_cast<double>(sim->steps() - step0) * n_total / std::max(el, 1e-9);
         const double eta = el / (sim->time() - time0) * (t_end - sim->time());
-        std::fprintf(
-            stderr,
-            "%st = %.4f / %.4f s | step %ld | dt %.3e s | %.2f M particle-steps/s | ETA %s%s",
-            tty ? "\r" : "", sim->time(), t_end, sim->steps(), sim->dt(), rate / 1e6,
-            format_duration(eta).c_str(), tty ? "   " : "\n");
-        std::fflush(stderr);
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "t = %.4f / %.4f s | step %ld | dt %.3e s | %.2f M particle-steps/s | ETA %s",
+                      sim->time(), t_end, sim->steps(), sim->dt(), rate / 1e6,
+                      format_duration(eta).c_str());
+        log.file_line(line);
+        if (opt.progress) {
+          std::fprintf(stderr, "%s%s%s", tty ? "\r" : "", line, tty ? "   " : "\n");
+          std::fflush(stderr);
+        }
       }
     }
   } catch (const InstabilityError& e) {
@@ -562,9 +612,25 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt) {
 }  // namespace
 
 RunSummary run_case(const CaseSpec& spec, const RunOptions& options) {
-  if (spec.dim == 2) return run_dim<2>(spec, options);
-  if (spec.dim == 3) return run_dim<3>(spec, options);
-  throw std::invalid_argument(spec.file + ": dim must be 2 or 3");
+  if (spec.dim != 2 && spec.dim != 3)
+    throw std::invalid_argument(spec.file + ": dim must be 2 or 3");
+  RunLog log(options.log ? *options.log : std::cout);
+  // How the run ended goes into run.log too (if the run got that far; the caller prints it).
+  auto ended = [&](const std::string& how) {
+    if (log.attached()) log.file_line(how.c_str());
+  };
+  try {
+    return spec.dim == 2 ? run_dim<2>(spec, options, log) : run_dim<3>(spec, options, log);
+  } catch (const Interrupted& e) {
+    ended(std::string("swell: ") + e.what());
+    throw;
+  } catch (const InstabilityError& e) {
+    ended(std::string("error: the run went unstable: ") + e.what());
+    throw;
+  } catch (const std::exception& e) {
+    ended(std::string("error: ") + e.what());
+    throw;
+  }
 }
 
 }  // namespace swell

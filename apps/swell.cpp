@@ -23,6 +23,7 @@
 #include "apps/wave_predict_command.hpp"
 #include "apps/waves_command.hpp"
 #include "io/case_file.hpp"
+#include "io/case_schema.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/provenance.hpp"
 #include "solver/time/simulation.hpp"
@@ -119,6 +120,8 @@ int main(int argc, char** argv) {
   compare->add_option("--reference", cmp.reference, "reference CSV table, or a run folder")
       ->required();
   compare->add_option("--labels", cmp_labels, "comma-separated labels, one per run");
+  compare->add_option("--reference-label", cmp.reference_label,
+                      "legend text of the reference (e.g. \"experiment (Lobovsky 2014)\")");
   compare->add_option("-o,--out", cmp.out_dir, "output folder")->required();
   compare->add_option("--map", cmp.map, "GAUGE=COLUMN: reference column of a gauge (repeatable)");
   compare->add_option("--time-scale", cmp.time_scale, "normalise run times: t * scale")
@@ -216,6 +219,14 @@ int main(int argc, char** argv) {
   waves->add_option("--dp", waves_opt.dp, "particle spacing [m]: resolution checks")
       ->check(kPositive);
   waves->add_option("-g", waves_opt.g, "gravity [m/s^2] (default 9.81)")->check(kPositive);
+
+  std::string help_topic, help_key;
+  auto* help = app.add_subcommand(
+      "help",
+      "reference documentation: `swell help case` (every case-file key, Markdown) or "
+      "`swell help case KEY.PATH` (one key or section)");
+  help->add_option("topic", help_topic, "case")->required()->check(CLI::IsMember({"case"}));
+  help->add_option("key", help_key, "a key path such as physics.coefh or gauges.band");
 
   try {
     app.parse(argc, argv);
@@ -322,6 +333,19 @@ int main(int argc, char** argv) {
       waves_predict.run(std::cout);
     } else if (waves_goda.chosen()) {  // swell waves goda
       waves_goda.run(std::cout);
+    } else if (*help) {
+      if (help_key.empty()) {
+        std::cout << swell::case_schema::reference_markdown();
+      } else if (const auto entry = swell::case_schema::reference_entry(help_key)) {
+        std::cout << *entry;
+      } else {
+        std::string sections;
+        for (const auto& s : swell::case_schema::sections())
+          if (!s.path.empty()) sections += (sections.empty() ? "" : ", ") + std::string(s.path);
+        throw std::invalid_argument("help case: no key or section '" + help_key +
+                                    "' in the case-file schema; sections: " + sections +
+                                    " (and the top-level keys); `swell help case` lists them all");
+      }
     }
   } catch (const swell::Interrupted& e) {
     std::cerr << "swell: " << e.what() << "\n";

@@ -21,6 +21,9 @@ struct CompareOptions {
   std::vector<std::string> runs;    // run folders holding gauges_*.csv
   std::vector<std::string> labels;  // one per run; default: the folder names
   std::string reference;            // a CSV table, or a run folder
+  // Legend text of the reference; default: "<method, resolution> (reference)" for a run folder,
+  // "<file>, column <column>" for a table.
+  std::string reference_label;
   std::string out_dir;
   // gauge=column pairs for reference columns not named after the gauge. Without one, a
   // column named exactly like the gauge, or ending in "_<gauge>", is used.

@@ -21,12 +21,13 @@
 #include <vector>
 
 #include "io/case_parse_util.hpp"
+#include "io/case_schema.hpp"
 
 namespace swell::case_parse {
 
 namespace {
 
-const Names kCommonKeys = {"name", "ramp", "rate", "components", "start", "stop"};
+constexpr std::string_view kSection = "damping[]";  // the schema's section (io/case_schema.cpp)
 const char* const kExample =
     "a map such as {name: outlet, plane: {at: [8, 0], direction: [1, 0]}, length: 2}";
 
@@ -52,7 +53,7 @@ class DampingReader : private NodeReader {
   }
 
   SettlingSpec read_settling(const YAML::Node& node, const std::string& path) const {
-    expect_map(node, path, {"duration", "rate"});
+    expect_map(node, path, case_schema::all_keys("time.settling"));
     SettlingSpec s;
     s.duration = number_if(
         require(node, path, "duration"), child(path, "duration"), [](double d) { return d > 0.0; },
@@ -81,7 +82,7 @@ class DampingReader : private NodeReader {
     z.name = name(require(node, path, "name"), child(path, "name"));
     if (plane) {
       const std::string p = child(path, "plane");
-      expect_map(*plane, p, {"at", "direction"});
+      expect_map(*plane, p, case_schema::all_keys("damping[].plane"));
       z.at = vector(require(*plane, p, "at"), child(p, "at"));
       z.direction = direction(require(*plane, p, "direction"), child(p, "direction"));
       z.length = number_if(
@@ -89,7 +90,7 @@ class DampingReader : private NodeReader {
           "a number > 0 (the zone's length along its direction, m)");
     } else {
       const std::string b = child(path, "box");
-      expect_map(*box, b, {"min", "max"});
+      expect_map(*box, b, case_schema::all_keys("damping[].box"));
       const YAML::Node min_node = require(*box, b, "min"), max_node = require(*box, b, "max");
       z.box_min = vector(min_node, child(b, "min"));
       z.box_max = vector(max_node, child(b, "max"));
@@ -97,7 +98,7 @@ class DampingReader : private NodeReader {
       z.direction = direction(require(node, path, "direction"), child(path, "direction"));
     }
     if (auto v = find(node, "ramp")) {
-      const std::string r = choice(*v, child(path, "ramp"), {"quadratic", "cosine"});
+      const std::string r = choice(*v, child(path, "ramp"), case_schema::choices(kSection, "ramp"));
       z.ramp = r == "quadratic" ? DampingRamp::Quadratic : DampingRamp::Cosine;
     }
     if (auto v = find(node, "rate")) z.rate = rate(*v, child(path, "rate"), z.rate);
@@ -124,7 +125,6 @@ class DampingReader : private NodeReader {
   void check_zone_keys(const YAML::Node& node, const std::string& path,
                        DampingZone::Shape shape) const {
     const bool is_plane = shape == DampingZone::Shape::Plane;
-    const std::string_view own = is_plane ? "length" : "direction";
     const std::string_view other = is_plane ? "direction" : "length";
     if (auto v = find(node, other)) {
       fail(*v, child(path, other) +
@@ -133,9 +133,7 @@ class DampingReader : private NodeReader {
                              : ": a box zone takes no length (the box's extent along its "
                                "direction is the length)"));
     }
-    Names allowed = kCommonKeys;
-    allowed.push_back(is_plane ? "plane" : "box");
-    allowed.push_back(own);
+    const Names allowed = case_schema::keys_for(kSection, is_plane ? "plane" : "box");
     check_keys(node, path, allowed, is_plane ? " for a plane zone" : " for a box zone");
   }
 

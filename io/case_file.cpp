@@ -24,6 +24,7 @@
 
 #include "io/case_motion.hpp"
 #include "io/case_parse_util.hpp"
+#include "io/case_schema.hpp"
 #include "io/model_names.hpp"
 #include "io/safe_name.hpp"
 
@@ -248,8 +249,7 @@ class CaseReader : private NodeReader {
 };
 
 CaseSpec CaseReader::read(const YAML::Node& root) {
-  const Names top_keys = {"name",   "dim",    "dp",     "physics",  "time",   "domain",
-                          "bodies", "gauges", "output", "watchdog", "limits", "damping"};
+  const Names top_keys = case_schema::all_keys("");
   expect(root.IsMap(), root, "case file", "a map with keys " + join(top_keys));
   check_keys(root, "", top_keys);
 
@@ -284,9 +284,7 @@ CaseSpec CaseReader::read(const YAML::Node& root) {
 
 void CaseReader::read_physics(const YAML::Node& node, const std::string& path,
                               CaseSpec& spec) const {
-  expect_map(node, path,
-             {"rho0", "gravity", "coefsound", "coefh", "hswl", "kernel", "viscosity",
-              "density_diffusion", "density_bounds", "boundary", "shifting"});
+  expect_map(node, path, case_schema::all_keys("physics"));
   const auto positive = [](double v) { return v > 0.0; };
   if (auto v = find(node, "rho0")) {
     spec.rho0 = number_if(*v, child(path, "rho0"), positive, "a number > 0");
@@ -331,10 +329,11 @@ void CaseReader::read_shifting(const YAML::Node& node, const std::string& path,
     spec.shifting = model(*v, child(path, "model"), kShiftingModels, shifting_name);
   }
   if (spec.shifting == ShiftingModel::None) {
-    check_keys(node, path, {"model"}, " for model none");
+    check_keys(node, path, case_schema::keys_for("physics.shifting", "none"), " for model none");
     return;
   }
-  check_keys(node, path, {"model", "coefficient", "surface_threshold"}, " for model fickian");
+  check_keys(node, path, case_schema::keys_for("physics.shifting", "fickian"),
+             " for model fickian");
   if (auto v = find(node, "coefficient")) {
     // Skillen et al. (2013) and DualSPHysics use 2; beyond ~10 the shift per step is no longer
     // small against dp.
@@ -359,10 +358,10 @@ void CaseReader::read_boundary(const YAML::Node& node, const std::string& path,
     spec.boundary = model(*v, child(path, "model"), kBoundaryTypes, boundary_name);
   }
   if (spec.boundary == BoundaryType::Dbc) {
-    check_keys(node, path, {"model"}, " for model dbc");
+    check_keys(node, path, case_schema::keys_for("physics.boundary", "dbc"), " for model dbc");
     return;
   }
-  check_keys(node, path, {"model", "slip", "det_min"}, " for model mdbc");
+  check_keys(node, path, case_schema::keys_for("physics.boundary", "mdbc"), " for model mdbc");
   if (auto v = find(node, "slip")) {
     spec.mdbc_slip = model(*v, child(path, "slip"), kMdbcSlips, mdbc_slip_name);
   }
@@ -382,12 +381,14 @@ void CaseReader::read_viscosity(const YAML::Node& node, const std::string& path,
   }
   const auto non_negative = [](double v) { return v >= 0.0; };
   if (spec.viscosity_model == ViscosityModel::Artificial) {
-    check_keys(node, path, {"model", "alpha"}, " for model artificial");
+    check_keys(node, path, case_schema::keys_for("physics.viscosity", "artificial"),
+               " for model artificial");
     if (auto v = find(node, "alpha")) {
       spec.alpha = number_if(*v, child(path, "alpha"), non_negative, "a number >= 0");
     }
   } else {
-    check_keys(node, path, {"model", "nu"}, " for model laminar");
+    check_keys(node, path, case_schema::keys_for("physics.viscosity", "laminar"),
+               " for model laminar");
     if (auto v = find(node, "nu")) {
       spec.nu = number_if(*v, child(path, "nu"), non_negative, "a number >= 0");
     }
@@ -401,11 +402,13 @@ void CaseReader::read_diffusion(const YAML::Node& node, const std::string& path,
     spec.diffusion_model = model(*v, child(path, "model"), kDiffusionModels, diffusion_name);
   }
   if (spec.diffusion_model == DiffusionModel::None) {
-    check_keys(node, path, {"model"}, " for model none");
+    check_keys(node, path, case_schema::keys_for("physics.density_diffusion", "none"),
+               " for model none");
     return;
   }
-  check_keys(node, path, {"model", "delta"},
-             " for model " + std::string(diffusion_name(spec.diffusion_model)));
+  const std::string diffusion = diffusion_name(spec.diffusion_model);
+  check_keys(node, path, case_schema::keys_for("physics.density_diffusion", diffusion),
+             " for model " + diffusion);
   if (auto v = find(node, "delta")) {
     spec.delta = number_if(
         *v, child(path, "delta"), [](double d) { return d >= 0.0; }, "a number >= 0");
@@ -422,7 +425,7 @@ void CaseReader::read_density_bounds(const YAML::Node& node, const std::string& 
 }
 
 void CaseReader::read_time(const YAML::Node& node, const std::string& path, CaseSpec& spec) const {
-  expect_map(node, path, {"end", "cfl", "integrator", "verlet_steps", "settling"});
+  expect_map(node, path, case_schema::all_keys("time"));
   spec.t_end = number_if(
       require(node, path, "end"), child(path, "end"), [](double v) { return v > 0.0; },
       "a number > 0");
@@ -443,7 +446,7 @@ void CaseReader::read_time(const YAML::Node& node, const std::string& path, Case
 
 void CaseReader::read_domain(const YAML::Node& node, const std::string& path,
                              CaseSpec& spec) const {
-  expect_map(node, path, {"min", "max"});
+  expect_map(node, path, case_schema::all_keys("domain"));
   const YAML::Node min_node = require(node, path, "min");
   const YAML::Node max_node = require(node, path, "max");
   const Eigen::Vector3d min = vector(min_node, child(path, "min"));
@@ -455,7 +458,7 @@ void CaseReader::read_domain(const YAML::Node& node, const std::string& path,
 
 void CaseReader::read_output(const YAML::Node& node, const std::string& path,
                              CaseSpec& spec) const {
-  expect_map(node, path, {"every", "vtk", "vtk_split", "hdf5", "checkpoint_every", "gauge_every"});
+  expect_map(node, path, case_schema::all_keys("output"));
   const auto non_negative = [](double e) { return e >= 0.0; };
   if (auto v = find(node, "every")) {
     spec.output_every = number_if(*v, child(path, "every"), non_negative, "a number >= 0");
@@ -476,9 +479,7 @@ void CaseReader::read_output(const YAML::Node& node, const std::string& path,
 // Thresholds of the blow-up watchdog (solver/diagnostics.hpp, WatchdogLimits).
 void CaseReader::read_watchdog(const YAML::Node& node, const std::string& path,
                                CaseSpec& spec) const {
-  expect_map(node, path,
-             {"every", "warn_excluded", "max_excluded", "max_density", "penetration_depth",
-              "max_penetrated", "dt_collapse"});
+  expect_map(node, path, case_schema::all_keys("watchdog"));
   WatchdogLimits& w = spec.watchdog;
   const auto fraction = [](double f) { return f > 0.0 && f <= 1.0; };
   if (auto v = find(node, "every")) {
@@ -517,7 +518,7 @@ void CaseReader::read_watchdog(const YAML::Node& node, const std::string& path,
 
 void CaseReader::read_limits(const YAML::Node& node, const std::string& path,
                              CaseSpec& spec) const {
-  expect_map(node, path, {"max_particles"});
+  expect_map(node, path, case_schema::all_keys("limits"));
   if (auto v = find(node, "max_particles")) {
     spec.max_particles = number_if(
         *v, child(path, "max_particles"), [](double n) { return n >= 1.0; }, "a number >= 1");
@@ -550,12 +551,12 @@ std::vector<BodySpec> CaseReader::read_bodies(const YAML::Node& node,
 }
 
 BodySpec CaseReader::read_body(const YAML::Node& node, const std::string& path) const {
-  expect_map(node, path, {"name", "kind", "shape", "fill", "walls", "layers", "open", "motion"});
+  expect_map(node, path, case_schema::all_keys("bodies[]"));
   BodySpec body;
   body.line = line_of(node);
   body.name = name(require(node, path, "name"), child(path, "name"));
-  const std::string kind =
-      choice(require(node, path, "kind"), child(path, "kind"), {"fluid", "boundary"});
+  const std::string kind = choice(require(node, path, "kind"), child(path, "kind"),
+                                  case_schema::choices("bodies[]", "kind"));
   body.kind = kind == "fluid" ? BodySpec::Kind::Fluid : BodySpec::Kind::Boundary;
   // A fluid body is a shape or a fill of a tank; a boundary body is always a shape.
   const std::optional<YAML::Node> shape = find(node, "shape");
@@ -585,7 +586,7 @@ BodySpec CaseReader::read_body(const YAML::Node& node, const std::string& path) 
 // (resolve_fill_targets), since it may come later in the list.
 void CaseReader::read_fill(const YAML::Node& node, const std::string& path, BodySpec& body) const {
   expect(node.IsMap(), node, path, "a map such as {below: 0.3, inside: tank}");
-  check_keys(node, path, {"below", "inside"});
+  check_keys(node, path, case_schema::all_keys("bodies[].fill"));
   body.fill_below = number(require(node, path, "below"), child(path, "below"));
   body.fill_inside = name(require(node, path, "inside"), child(path, "inside"));
 }
@@ -632,7 +633,7 @@ void CaseReader::resolve_fill_targets(const YAML::Node& node, const std::string&
 void CaseReader::read_wall_options(const YAML::Node& node, const std::string& path,
                                    BodySpec& body) const {
   if (body.kind == BodySpec::Kind::Fluid) {
-    for (const std::string_view key : {"walls", "layers", "open", "motion"}) {
+    for (const std::string_view key : case_schema::form_keys("bodies[]", "boundary")) {
       if (auto v = find(node, key)) {
         fail(*v, child(path, key) + ": only boundary bodies take '" + std::string(key) +
                      "', but body '" + body.name + "' has kind fluid");
@@ -641,7 +642,8 @@ void CaseReader::read_wall_options(const YAML::Node& node, const std::string& pa
     return;
   }
   if (auto v = find(node, "walls")) {
-    const std::string walls = choice(*v, child(path, "walls"), {"inside", "outside"});
+    const std::string walls =
+        choice(*v, child(path, "walls"), case_schema::choices("bodies[]", "walls"));
     body.walls = walls == "inside" ? BodySpec::Walls::Inside : BodySpec::Walls::Outside;
   }
   if (auto v = find(node, "layers")) {

@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "io/case_parse_util.hpp"
+#include "io/case_schema.hpp"
 
 namespace swell::case_parse {
 
@@ -20,20 +22,27 @@ namespace {
 struct GaugeKindInfo {
   std::string_view name;
   GaugeSpec::Kind kind;
-  Names keys;  // besides kCommonKeys
+  Names keys;  // besides the common keys
 };
 
-const Names kCommonKeys = {"name", "kind", "every"};
+constexpr std::string_view kSection = "gauges[]";  // the schema's section (io/case_schema.cpp)
 
+// The kinds in the schema's order, each with its keys from the schema.
 const std::vector<GaugeKindInfo>& gauge_kinds() {
-  static const std::vector<GaugeKindInfo> kinds = {
-      {"pressure", GaugeSpec::Kind::Pressure, {"at", "normal", "offset", "size"}},
-      {"height", GaugeSpec::Kind::Height, {"at", "level", "sampling"}},
-      {"velocity", GaugeSpec::Kind::Velocity, {"at"}},
-      {"force", GaugeSpec::Kind::Force, {"body", "moment_about"}},
-      {"front", GaugeSpec::Kind::Front, {"band"}},
-      {"runup", GaugeSpec::Kind::Runup, {"from", "to", "swl", "sampling"}},
-  };
+  static const std::vector<GaugeKindInfo> kinds = [] {
+    std::vector<GaugeKindInfo> out;
+    for (const std::string_view name : case_schema::forms(kSection)) {
+      GaugeSpec::Kind kind{};
+      bool known = false;
+      for (const auto k :
+           {GaugeSpec::Kind::Pressure, GaugeSpec::Kind::Height, GaugeSpec::Kind::Velocity,
+            GaugeSpec::Kind::Force, GaugeSpec::Kind::Front, GaugeSpec::Kind::Runup})
+        if (name == gauge_kind_name(k)) kind = k, known = true;
+      if (!known) throw std::logic_error("gauge kind '" + std::string(name) + "' has no reader");
+      out.push_back({name, kind, case_schema::form_keys(kSection, name)});
+    }
+    return out;
+  }();
   return kinds;
 }
 
@@ -142,7 +151,7 @@ const GaugeKindInfo& GaugeReader::read_kind(const YAML::Node& node, const std::s
 
 void GaugeReader::check_gauge_keys(const YAML::Node& node, const std::string& path,
                                    const GaugeKindInfo& kind) const {
-  Names allowed = kCommonKeys;
+  Names allowed = case_schema::common_keys(kSection);
   allowed.insert(allowed.end(), kind.keys.begin(), kind.keys.end());
   const std::string context = " for kind " + std::string(kind.name);
   for (const auto& entry : node) {

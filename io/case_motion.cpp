@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/case_schema.hpp"
 #include "waves/spectrum.hpp"
 #include "waves/theory.hpp"
 
@@ -37,28 +38,30 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 struct MotionTypeInfo {
   std::string_view name;
   MotionSpec::Type type;
-  Names keys;  // besides kCommonKeys
+  Names keys;  // besides the common keys
 };
 
-const Names kCommonKeys = {"type", "start", "stop", "ramp"};
+constexpr std::string_view kSection = "bodies[].motion";  // the schema's (io/case_schema.cpp)
 
+// The types in the schema's order, each with its keys from the schema.
 const std::vector<MotionTypeInfo>& motion_types() {
-  static const std::vector<MotionTypeInfo> types = {
-      {"linear", MotionSpec::Type::Linear, {"velocity", "acceleration"}},
-      {"sinusoidal", MotionSpec::Type::Sinusoidal, {"amplitude", "period", "phase", "direction"}},
-      {"rotation",
-       MotionSpec::Type::Rotation,
-       {"centre", "axis", "rate", "amplitude", "period", "phase"}},
-      {"file",
-       MotionSpec::Type::File,
-       {"file", "column", "quantity", "direction", "centre", "axis"}},
-      {"wave",
-       MotionSpec::Type::Wave,
-       {"paddle",    "wave",           "depth",      "direction", "hinge", "bed",
-        "height",    "period",         "order",      "phase",     "hs",    "tp",
-        "gamma",     "spectrum",       "components", "seed",      "f_min", "f_max",
-        "amplitude", "focus_distance", "focus_time", "absorption"}},
-  };
+  static const std::vector<MotionTypeInfo> types = [] {
+    const std::pair<std::string_view, MotionSpec::Type> known[] = {
+        {"linear", MotionSpec::Type::Linear},
+        {"sinusoidal", MotionSpec::Type::Sinusoidal},
+        {"rotation", MotionSpec::Type::Rotation},
+        {"file", MotionSpec::Type::File},
+        {"wave", MotionSpec::Type::Wave}};
+    std::vector<MotionTypeInfo> out;
+    for (const std::string_view name : case_schema::forms(kSection)) {
+      const auto it = std::find_if(std::begin(known), std::end(known),
+                                   [&](const auto& k) { return k.first == name; });
+      if (it == std::end(known))
+        throw std::logic_error("motion type '" + std::string(name) + "' has no reader");
+      out.push_back({name, it->second, case_schema::form_keys(kSection, name)});
+    }
+    return out;
+  }();
   return types;
 }
 
@@ -141,7 +144,7 @@ const MotionTypeInfo& MotionReader::read_type(const YAML::Node& node,
 
 void MotionReader::check_motion_keys(const YAML::Node& node, const std::string& path,
                                      const MotionTypeInfo& type) const {
-  Names allowed = kCommonKeys;
+  Names allowed = case_schema::common_keys(kSection);
   allowed.insert(allowed.end(), type.keys.begin(), type.keys.end());
   const std::string context = " for type " + std::string(type.name);
   for (const auto& entry : node) {
@@ -228,8 +231,8 @@ void MotionReader::read_rotation(const YAML::Node& node, const std::string& path
 
 void MotionReader::read_file(const YAML::Node& node, const std::string& path,
                              MotionSpec& spec) const {
-  const std::string quantity =
-      choice(require(node, path, "quantity"), child(path, "quantity"), {"displacement", "angle"});
+  const std::string quantity = choice(require(node, path, "quantity"), child(path, "quantity"),
+                                      case_schema::choices(kSection, "quantity"));
   const bool angle = quantity == "angle";
   spec.quantity = angle ? MotionSpec::Quantity::Angle : MotionSpec::Quantity::Displacement;
   const std::string_view unused[] = {"direction"};
@@ -282,16 +285,13 @@ void MotionReader::read_file(const YAML::Node& node, const std::string& path,
 void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
                              MotionSpec& spec) const {
   using waves::PaddleGeometry;
-  const Names kinds = {"regular", "solitary", "focused", "irregular"};
+  const Names kinds = case_schema::forms(kSection, "wave");
   const std::string kind = choice(require(node, path, "wave"), child(path, "wave"), kinds);
   spec.wave_kind = kind;
-  const std::vector<std::pair<std::string, Names>> own = {
-      {"regular", {"height", "period", "order", "phase"}},
-      {"solitary", {"height"}},
-      {"irregular", {"hs", "tp", "spectrum", "gamma", "components", "seed", "f_min", "f_max"}},
-      {"focused",
-       {"amplitude", "focus_distance", "focus_time", "tp", "spectrum", "gamma", "components",
-        "f_min", "f_max"}}};
+  // Each wave kind's own keys (schema forms "wave:<kind>").
+  std::vector<std::pair<std::string, Names>> own;
+  for (const std::string_view k : kinds)
+    own.emplace_back(k, case_schema::form_keys(kSection, "wave:" + std::string(k)));
   Names allowed;
   for (const auto& [k, keys] : own)
     if (k == kind) allowed = keys;
@@ -313,9 +313,10 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
 
   PaddleGeometry paddle;
   if (auto v = find(node, "paddle")) {
-    paddle.type = choice(*v, child(path, "paddle"), {"piston", "flap"}) == "flap"
-                      ? PaddleGeometry::Type::Flap
-                      : PaddleGeometry::Type::Piston;
+    paddle.type =
+        choice(*v, child(path, "paddle"), case_schema::choices(kSection, "paddle")) == "flap"
+            ? PaddleGeometry::Type::Flap
+            : PaddleGeometry::Type::Piston;
   }
   const bool flap = paddle.type == PaddleGeometry::Type::Flap;
   paddle.depth = number_pos("depth");
@@ -396,9 +397,10 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
       waves::SpectrumSpec sp;
       sp.tp = number_pos("tp");
       if (auto v = find(node, "spectrum"))
-        sp.shape = choice(*v, child(path, "spectrum"), {"jonswap", "pm"}) == "pm"
-                       ? waves::SpectrumSpec::Shape::PiersonMoskowitz
-                       : waves::SpectrumSpec::Shape::Jonswap;
+        sp.shape =
+            choice(*v, child(path, "spectrum"), case_schema::choices(kSection, "spectrum")) == "pm"
+                ? waves::SpectrumSpec::Shape::PiersonMoskowitz
+                : waves::SpectrumSpec::Shape::Jonswap;
       if (auto v = find(node, "gamma"))
         sp.gamma = number_if(
             *v, child(path, "gamma"), [](double g) { return g >= 1.0 && g <= 20.0; },
@@ -462,13 +464,14 @@ void MotionReader::read_absorption(const YAML::Node& node, const std::string& pa
                    describe(node));
   for (const auto& entry : node) {
     const std::string key = entry.first.Scalar();
-    if (key != "gain" && key != "distance" && key != "filter" && key != "drift")
+    if (!contains(case_schema::all_keys("bodies[].motion.absorption"), key))
       fail(entry.first, child(path, key) + ": unknown key; absorption takes gain (tuned | " +
                             "shallow), distance (m), filter (s) and drift (s)");
   }
   const auto positive = [](double v) { return v > 0.0; };
   if (auto v = find(node, "gain")) {
-    const std::string g = choice(*v, child(path, "gain"), {"tuned", "shallow"});
+    const std::string g =
+        choice(*v, child(path, "gain"), case_schema::choices("bodies[].motion.absorption", "gain"));
     if (g == "tuned" && kind == "solitary")
       fail(*v, child(path, "gain") + ": a solitary wave has no period to tune to; use shallow");
     a.gain =

@@ -22,13 +22,17 @@
 #include <vector>
 
 #include "io/case_parse_util.hpp"
+#include "io/case_schema.hpp"
 
 namespace swell::case_parse {
 
 namespace {
 
-const Names kShapeKinds = {"box",  "cylinder", "sphere", "polygon",
-                           "mesh", "stl",      "union",  "difference"};
+// The shape kinds and each kind's keys come from the schema (io/case_schema.cpp).
+const Names& shape_kinds() {
+  static const Names kinds = case_schema::all_keys("bodies[].shape");
+  return kinds;
+}
 const Names kMeshExtensions = {".stl", ".obj", ".off", ".ply"};
 
 std::string lower(std::string s) {
@@ -70,6 +74,17 @@ bool segments_meet(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eig
          (d3 == 0 && on_segment(r, s, p)) || (d4 == 0 && on_segment(r, s, q));
 }
 
+// A cylinder's keys in a `dim` ("2D", "3D") case, and those of `form` that `other` lacks.
+Names cylinder_keys(std::string_view form) {
+  return case_schema::keys_for("bodies[].shape.cylinder", form);
+}
+Names cylinder_keys_only(std::string_view form, std::string_view other) {
+  Names out;
+  for (const std::string_view k : cylinder_keys(form))
+    if (!contains(cylinder_keys(other), k)) out.push_back(k);
+  return out;
+}
+
 class ShapeReader : private NodeReader {
  public:
   explicit ShapeReader(const NodeReader& base) : NodeReader(base) {}
@@ -100,7 +115,7 @@ class ShapeReader : private NodeReader {
 
 ShapeSpec ShapeReader::read(const YAML::Node& node, const std::string& path) const {
   expect(node.IsMap() && node.size() == 1, node, path,
-         "a map with exactly one shape key (one of: " + join(kShapeKinds) + ")");
+         "a map with exactly one shape key (one of: " + join(shape_kinds()) + ")");
   const auto entry = *node.begin();
   const YAML::Node& key = entry.first;
   expect(key.IsScalar(), key, path, "a shape name");
@@ -123,7 +138,7 @@ ShapeSpec ShapeReader::read(const YAML::Node& node, const std::string& path) con
   } else if (kind == "difference") {
     shape = read_csg(ShapeSpec::Type::Difference, value, kind_path);
   } else {
-    fail(key, "unknown shape '" + kind_path + "'; known shapes: " + join(kShapeKinds));
+    fail(key, "unknown shape '" + kind_path + "'; known shapes: " + join(shape_kinds()));
   }
   shape.line = line_of(node);
   return shape;
@@ -140,7 +155,7 @@ void ShapeReader::check_dim_keys(const YAML::Node& node, const std::string& path
 }
 
 ShapeSpec ShapeReader::read_box(const YAML::Node& node, const std::string& path) const {
-  expect_map(node, path, {"min", "max"});
+  expect_map(node, path, case_schema::all_keys("bodies[].shape.box"));
   const YAML::Node min_node = require(node, path, "min");
   const YAML::Node max_node = require(node, path, "max");
   ShapeSpec shape;
@@ -156,7 +171,7 @@ ShapeSpec ShapeReader::read_cylinder(const YAML::Node& node, const std::string& 
   shape.type = ShapeSpec::Type::Cylinder;
   if (dim() == 2) {
     expect(node.IsMap(), node, path, "a map such as {center: [x, y], radius: r}");
-    check_dim_keys(node, path, {"center", "radius"}, {"p1", "p2"},
+    check_dim_keys(node, path, cylinder_keys("2D"), cylinder_keys_only("3D", "2D"),
                    "in a 2D case a cylinder is a disc given by center and radius; the axis end "
                    "points p1 and p2 are for 3D cases");
     shape.p1 = vector(require(node, path, "center"), child(path, "center"));
@@ -164,7 +179,7 @@ ShapeSpec ShapeReader::read_cylinder(const YAML::Node& node, const std::string& 
   } else {
     expect(node.IsMap(), node, path,
            "a map such as {p1: [x, y, z], p2: [x, y, z], radius: r} (the axis from p1 to p2)");
-    check_dim_keys(node, path, {"p1", "p2", "radius"}, {"center"},
+    check_dim_keys(node, path, cylinder_keys("3D"), cylinder_keys_only("2D", "3D"),
                    "in a 3D case a cylinder is given by the end points p1 and p2 of its axis and "
                    "its radius; 'center' is for 2D discs");
     shape.p1 = vector(require(node, path, "p1"), child(path, "p1"));
@@ -181,7 +196,7 @@ ShapeSpec ShapeReader::read_cylinder(const YAML::Node& node, const std::string& 
 }
 
 ShapeSpec ShapeReader::read_sphere(const YAML::Node& node, const std::string& path) const {
-  expect_map(node, path, {"center", "radius"});
+  expect_map(node, path, case_schema::all_keys("bodies[].shape.sphere"));
   ShapeSpec shape;
   shape.type = ShapeSpec::Type::Sphere;
   shape.p1 = vector(require(node, path, "center"), child(path, "center"));
@@ -196,7 +211,7 @@ ShapeSpec ShapeReader::read_polygon(const YAML::Node& key, const YAML::Node& nod
                   ": polygons exist only in 2D cases; in a 3D case use a mesh (or a box, "
                   "cylinder or sphere)");
   }
-  expect_map(node, path, {"points"});
+  expect_map(node, path, case_schema::all_keys("bodies[].shape.polygon"));
   const YAML::Node points_node = require(node, path, "points");
   const std::string points_path = child(path, "points");
   expect(points_node.IsSequence() && points_node.size() >= 3, points_node, points_path,
@@ -269,7 +284,7 @@ void ShapeReader::check_polygon_points(const YAML::Node& points_node,
 }
 
 ShapeSpec ShapeReader::read_mesh(const YAML::Node& node, const std::string& path) const {
-  expect_map(node, path, {"file", "scale", "rotate", "translate", "repair", "slice_y"});
+  expect_map(node, path, case_schema::all_keys("bodies[].shape.mesh"));
   ShapeSpec shape;
   shape.type = ShapeSpec::Type::Mesh;
   const YAML::Node file_node = require(node, path, "file");

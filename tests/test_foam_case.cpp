@@ -3,6 +3,7 @@
 // gauge CSV format.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -431,4 +432,85 @@ TEST(FoamCase, SolverLogVerdicts) {
   v = foam::check_solver_log(ok, 0.2, 143, "time step collapsed to 1e-09 s");
   EXPECT_EQ(v.kind, FoamError::Kind::Diverged);
   EXPECT_NE(v.problem.find("collapsed"), std::string::npos);
+}
+
+// Sampling lines: OpenFOAM's own `uniform` set where every point lies strictly inside the kept
+// mesh, a cloud of the same points where a line crosses an obstacle or starts on the boundary.
+TEST(FoamCase, SampleLinesAreUniformWhereTheyFitAndCloudsElse) {
+  const CaseSpec spec = load_case_file(kCase);
+  std::ostringstream log;
+  const fs::path dir = scratch("sets_obstacle");
+  write_foam_case(spec, options(dir, 0.004), log);
+  std::string cd = read(dir / "system/controlDict");
+  // The front row (y = 2 mm) runs through the obstacle, the height line starts on the floor.
+  auto block = [](const std::string& text, const std::string& name) {
+    const auto k = text.find("            " + name + "\n            {");
+    return k == std::string::npos ? std::string()
+                                  : text.substr(k, text.find("            }", k) - k);
+  };
+  EXPECT_NE(block(cd, "front_0").find("type    cloud;"), std::string::npos) << cd;
+  EXPECT_NE(block(cd, "H1").find("type    cloud;"), std::string::npos);
+
+  // Without the obstacle the front row fits: a uniform line of the same 146 cell centres.
+  CaseSpec open = spec;
+  open.bodies.erase(std::remove_if(open.bodies.begin(), open.bodies.end(),
+                                   [](const BodySpec& b) { return b.name == "obstacle"; }),
+                    open.bodies.end());
+  const fs::path dir2 = scratch("sets_open");
+  write_foam_case(open, options(dir2, 0.004), log);
+  cd = read(dir2 / "system/controlDict");
+  const std::string f = block(cd, "front_0");
+  EXPECT_NE(f.find("type    uniform;"), std::string::npos) << f;
+  EXPECT_NE(f.find("start   (0.002 0.002 0);"), std::string::npos) << f;
+  EXPECT_NE(f.find("end     (0.582 0.002 0);"), std::string::npos) << f;
+  EXPECT_NE(f.find("nPoints 146;"), std::string::npos) << f;
+  EXPECT_EQ(f.find("points\n"), std::string::npos);
+  EXPECT_LT(cd.size(), read(dir / "system/controlDict").size());
+}
+
+// Allclean removes what a run makes (time folders, logs, mesh, postProcessing, gauges) and
+// keeps the generated case (system/, constant/ dictionaries, 0.orig/, Allrun).
+TEST(FoamCase, AllcleanRemovesTheRunAndKeepsTheCase) {
+  const CaseSpec spec = load_case_file(kCase);
+  std::ostringstream log;
+  const fs::path dir = scratch("allclean");
+  write_foam_case(spec, options(dir, 0.008), log);
+  for (const char* d : {"0", "0.1", "0.25", "1e-05", "postProcessing/probes/0", "processor0/0",
+                        "gauges", "constant/polyMesh", "notes"})
+    fs::create_directories(dir / d);
+  for (const char* f : {"log.blockMesh", "log.interFoam", "gauges/x.csv", "notes/keep.txt"})
+    std::ofstream(dir / f) << "x\n";
+  ASSERT_EQ(std::system(("sh " + (dir / "Allclean").string()).c_str()), 0);
+  for (const char* gone : {"0", "0.1", "0.25", "1e-05", "postProcessing", "processor0", "gauges",
+                           "constant/polyMesh", "log.blockMesh", "log.interFoam"})
+    EXPECT_FALSE(fs::exists(dir / gone)) << gone;
+  for (const char* kept :
+       {"0.orig/U", "system/controlDict", "constant/g", "Allrun", "Allclean", "notes/keep.txt"})
+    EXPECT_TRUE(fs::exists(dir / kept)) << kept;
+  // Allrun passes --allow-run-as-root to mpirun only when run as root.
+  const std::string run = read(dir / "Allrun");
+  EXPECT_NE(run.find("[ \"$(id -u)\" -eq 0 ] && ROOT=--allow-run-as-root"), std::string::npos);
+  EXPECT_EQ(run.find("mpirun --allow-run-as-root"), std::string::npos);
+}
+
+// `swell foam --run` progress: time of end time, Courant numbers, time left at the mean rate.
+TEST(FoamCase, ProgressLineFromTheSolverLog) {
+  const fs::path dir = scratch("progress");
+  fs::create_directories(dir);
+  std::ofstream(dir / "log") << "Courant Number mean: 0.01 max: 0.31\n"
+                                "Interface Courant Number mean: 0 max: 0.12\n"
+                                "deltaT = 0.0005\nTime = 0.5\n"
+                                "Courant Number mean: 0.02 max: 0.42\n"
+                                "Interface Courant Number mean: 0 max: 0.17\n"
+                                "deltaT = 0.0004\nTime = 1\n";
+  const auto v = foam::check_solver_log((dir / "log").string(), 4.0, 0, "");
+  EXPECT_DOUBLE_EQ(v.courant_max, 0.42);
+  EXPECT_DOUBLE_EQ(v.interface_courant_max, 0.17);
+  const std::string line = foam::progress_line(v, 4.0, 20.0);
+  EXPECT_NE(line.find("t = 1 of 4 s (25 %)"), std::string::npos) << line;
+  EXPECT_NE(line.find("Courant max 0.42 (interface 0.17)"), std::string::npos) << line;
+  EXPECT_NE(line.find("dt 0.0004 s"), std::string::npos) << line;
+  EXPECT_NE(line.find("about 60 s left"), std::string::npos) << line;  // 20 s per 1 s, 3 s left
+  foam::SolverLog none;
+  EXPECT_EQ(foam::progress_line(none, 4.0, 3.0).find("left"), std::string::npos);
 }

@@ -307,3 +307,24 @@ TEST(FoamWaves, GaugesOfAZUpCaseComeBackInCaseAxesAndTime) {
   EXPECT_NE(read(dir / "gauges/gauges_force.csv").find("\n0.7,1,-2,-0.4\n"), std::string::npos)
       << read(dir / "gauges/gauges_force.csv");
 }
+
+// An absorbing piston (absorption:) is mapped to the same inlet, with a note saying that the
+// inlet's own active absorption replaces the paddle's (gain, filter and drift are not mapped);
+// a paddle without absorption gets no such note.
+TEST(FoamWaves, AbsorbingPistonIsMappedWithANote) {
+  auto notes = [](const CaseSpec& spec) {
+    FoamOptions o;
+    o.cell_size = 0.01;
+    std::string all;
+    for (const auto& n : foam::make_plan(spec, o).notes) all += n + "\n";
+    return all;
+  };
+  const std::string with = notes(wave_case(
+      "{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1.0, absorption: true}"));
+  EXPECT_NE(with.find("active absorption (absorption:) is not mapped as such"), std::string::npos)
+      << with;
+  EXPECT_NE(with.find("inlet (StokesI)"), std::string::npos) << with;
+  const std::string without =
+      notes(wave_case("{type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1.0}"));
+  EXPECT_EQ(without.find("absorption"), std::string::npos) << without;
+}

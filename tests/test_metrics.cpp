@@ -57,9 +57,11 @@ TEST(Metrics, PeakValueAndTimeErrors) {
   const Series ref = sampled(shifted_sine, 2.0, 0.0, 0.0, 1.0, 0.001);
   const Series run = sampled(shifted_sine, 2.3, 0.04, 0.0, 1.0, 0.001);
   MetricRequest req;
+  req.window = Window{0.0, 0.5};  // the positive half wave: a percent error is meaningful
   req.peak = true;
   req.peak_window = Window{0.0, 0.6};
   const GaugeMetrics m = compute_metrics(run, ref, req);
+  EXPECT_FALSE(m.crosses_zero);
   EXPECT_NEAR(m.ref_peak.value, 2.0, 1e-6);
   EXPECT_NEAR(m.ref_peak.time, 0.25, 1e-9);
   EXPECT_NEAR(m.peak.time, 0.29, 1e-9);

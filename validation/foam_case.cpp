@@ -168,6 +168,12 @@ std::size_t plan_wave(const CaseSpec& spec, const std::vector<geometry::BodyGeom
         (p.time_offset != 0.0
              ? "; OpenFOAM t = 0 is case time " + std::to_string(p.time_offset) + " s"
              : std::string()));
+    if (m.absorption)
+      p.notes.push_back("wave paddle " + b.name +
+                        ": its active absorption (absorption:) is not mapped as such; the "
+                        "waveModels inlet absorbs with its own shallow-water correction "
+                        "(activeAbsorption yes, Higuera et al. 2013), not the paddle's "
+                        "Schaffer-Klopman gain, filter and drift");
   }
   p.z_up = paddle != spec.bodies.size() && spec.dim == 2;
   return paddle;

@@ -138,12 +138,18 @@ struct SolverLog {
   long steps = 0;
   double last_time = 0.0;
   double min_dt = 1e300, max_dt = 0.0, last_dt = 0.0;
+  double courant_max = 0.0;            // the last step's "Courant Number ... max:" (0: none yet)
+  double interface_courant_max = 0.0;  // the last step's "Interface Courant Number ... max:"
   bool nan = false, fatal = false, fpe = false, finished = false;
   std::string problem;
   FoamError::Kind kind = FoamError::Kind::Diverged;
 };
 SolverLog check_solver_log(const std::string& log, double end_time, int status,
                            const std::string& stopped);
+
+// One line of `swell foam --run` progress from the solver log so far: simulated time of
+// end_time, steps, dt, Courant numbers, elapsed wall time and the time left at the mean rate.
+std::string progress_line(const SolverLog& s, double end_time, double elapsed_seconds);
 
 // Writes every dictionary of the case into dir (system/, constant/, 0.orig/).
 void write_case_files(const Plan& plan, const std::string& dir);

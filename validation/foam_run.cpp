@@ -160,6 +160,15 @@ foam::SolverLog foam::check_solver_log(const std::string& log, double end_time, 
       s.min_dt = std::min(s.min_dt, s.last_dt);
       s.max_dt = std::max(s.max_dt, s.last_dt);
     }
+    // "Courant Number mean: 0.01 max: 0.23" and "Interface Courant Number mean: ... max: ...",
+    // once per step.
+    if (line.find("Courant Number mean:") != std::string::npos) {
+      const auto m = line.find("max:");
+      if (m != std::string::npos) {
+        const double c = std::atof(line.c_str() + m + 4);
+        (line.rfind("Interface", 0) == 0 ? s.interface_courant_max : s.courant_max) = c;
+      }
+    }
     if (line.find("FOAM FATAL") != std::string::npos) s.fatal = true;
     // (The banner's "sigFpe : Enabling floating point exception trapping" is no error.)
     if (line.find("sigHandler") != std::string::npos ||
@@ -181,6 +190,21 @@ foam::SolverLog foam::check_solver_log(const std::string& log, double end_time, 
     s.problem = "stopped at t = " + std::to_string(s.last_time) + " s before the end time";
   }
   return s;
+}
+
+std::string foam::progress_line(const SolverLog& s, double end_time, double elapsed) {
+  std::ostringstream o;
+  o << std::setprecision(4) << "t = " << s.last_time << " of " << end_time << " s";
+  if (end_time > 0)
+    o << std::fixed << std::setprecision(0) << " (" << 100.0 * s.last_time / end_time << " %)";
+  o << std::defaultfloat << std::setprecision(3) << ", " << s.steps << " steps";
+  if (s.last_dt > 0) o << ", dt " << s.last_dt << " s";
+  if (s.steps > 0)
+    o << ", Courant max " << s.courant_max << " (interface " << s.interface_courant_max << ")";
+  o << std::fixed << std::setprecision(0) << ", " << elapsed << " s elapsed";
+  if (s.last_time > 0 && end_time > s.last_time)
+    o << ", about " << elapsed * (end_time - s.last_time) / s.last_time << " s left";
+  return o.str();
 }
 
 bool openfoam_available(std::string* why) {
@@ -292,13 +316,16 @@ FoamResult run_foam_case(const CaseSpec& spec, const FoamOptions& opt, std::ostr
 
   // interFoam, watched (the log, every 5 s): nan in the residuals, or a time step fallen below
   // 1e-5 of the largest one so far (after 50 steps), means the run has blown up or would crawl
-  // for hours; stop it.
+  // for hours; stop it. Every 30 s (the first after 10 s) a progress line: simulated time,
+  // Courant numbers, time step and the remaining wall time at the mean rate so far.
   const fs::path lp = dir / "log.interFoam";
   log << "  interFoam (" << (opt.np > 1 ? std::to_string(opt.np) + " processes" : "serial")
-      << ", to t = " << std::defaultfloat << std::setprecision(6) << plan.end_time << " s) ..."
+      << ", to t = " << std::defaultfloat << std::setprecision(6) << plan.end_time << " s, log "
+      << lp.string() << ")\n"
       << std::flush;
   const auto t0 = std::chrono::steady_clock::now();
   auto last_check = t0;
+  auto next_report = t0 + std::chrono::seconds(10);
   const StepResult s = run_step(dir, solver, lp, [&]() -> std::string {
     const auto now = std::chrono::steady_clock::now();
     if (now - last_check < std::chrono::seconds(5)) return {};
@@ -307,14 +334,21 @@ FoamResult run_foam_case(const CaseSpec& spec, const FoamOptions& opt, std::ostr
     if (sc.nan) return "nan in the solution";
     if (sc.steps > 50 && sc.last_dt > 0 && sc.last_dt < 1e-5 * sc.max_dt)
       return "time step collapsed to " + std::to_string(sc.last_dt) + " s";
+    if (now >= next_report) {
+      next_report = now + std::chrono::seconds(30);
+      log << "    "
+          << foam::progress_line(sc, plan.end_time, std::chrono::duration<double>(now - t0).count())
+          << "\n"
+          << std::flush;
+    }
     return {};
   });
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const foam::SolverLog sc =
       foam::check_solver_log(lp.string(), plan.end_time, s.status, s.stopped);
   r.steps = sc.steps;
-  log << " " << sc.steps << " steps, " << std::fixed << std::setprecision(1) << r.wall_seconds
-      << " s\n"
+  log << "  interFoam: " << sc.steps << " steps, " << std::fixed << std::setprecision(1)
+      << r.wall_seconds << " s\n"
       << std::defaultfloat;
   const std::string& problem = sc.problem;
   const FoamError::Kind kind = sc.kind;

@@ -1,5 +1,6 @@
 #include "validation/metrics.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -7,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace swell {
 namespace {
@@ -262,7 +264,51 @@ Peak boxcar_peak(const Series& s, Window w, double tau) {
   return p;
 }
 
+double window_range(const Series& s, Window w) {
+  double lo = kNaN, hi = kNaN;
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    if (!w.contains(s.t[i]) || !std::isfinite(s.v[i])) continue;
+    lo = std::isfinite(lo) ? std::min(lo, s.v[i]) : s.v[i];
+    hi = std::isfinite(hi) ? std::max(hi, s.v[i]) : s.v[i];
+  }
+  return hi - lo;
+}
+
+bool crosses_zero(const Series& ref, Window w, double tolerance) {
+  double lo = kNaN, hi = kNaN;
+  for (std::size_t i = 0; i < ref.t.size(); ++i) {
+    if (!w.contains(ref.t[i]) || !std::isfinite(ref.v[i])) continue;
+    lo = std::isfinite(lo) ? std::min(lo, ref.v[i]) : ref.v[i];
+    hi = std::isfinite(hi) ? std::max(hi, ref.v[i]) : ref.v[i];
+  }
+  const double range = hi - lo;
+  return range > 0.0 && lo < -tolerance * range && hi > tolerance * range;
+}
+
 namespace {
+// |s(t_i) - r_i| / range at the reference samples in w: (mean, max).
+std::pair<double, double> range_sample_errors(const Series& s, const Series& ref, Window w,
+                                              double range) {
+  if (!(range > 0.0)) return {kNaN, kNaN};
+  double sum = 0.0, max = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < ref.t.size(); ++i) {
+    if (!w.contains(ref.t[i]) || !std::isfinite(ref.v[i])) continue;
+    const double v = interpolate(s, ref.t[i]);
+    if (!std::isfinite(v)) continue;
+    const double e = std::abs(v - ref.v[i]) / range;
+    sum += e;
+    max = std::max(max, e);
+    ++n;
+  }
+  if (n == 0) return {kNaN, kNaN};
+  return {sum / n, max};
+}
+
+double over_range(double v, double ref, double range) {
+  return std::isfinite(v) && std::isfinite(ref) && range > 0.0 ? (v - ref) / range : kNaN;
+}
+
 double relative(double v, double ref) {
   return std::isfinite(v) && std::isfinite(ref) && ref != 0.0 ? (v - ref) / std::abs(ref) : kNaN;
 }
@@ -300,7 +346,62 @@ GaugeMetrics compute_metrics(const Series& s, const Series& ref, const MetricReq
     m.ref_filtered_peak = boxcar_peak(ref, req.peak_window, req.filter);
     m.filtered_peak_error = relative(m.filtered_peak.value, m.ref_filtered_peak.value);
   }
+  if (req.harmonic_period > 0.0) {
+    const FirstHarmonic a = first_harmonic(s, req.harmonic_period, req.harmonic_window);
+    const FirstHarmonic r = first_harmonic(ref, req.harmonic_period, req.harmonic_window);
+    m.amplitude = a.amplitude;
+    m.ref_amplitude = r.amplitude;
+    m.amplitude_error = relative(a.amplitude, r.amplitude);
+    double d = (a.phase - r.phase) / (2.0 * M_PI);
+    d -= std::floor(d + 0.5);  // to [-0.5, 0.5)
+    m.phase_error = d;
+  }
+
+  // Range-normalised errors, and no relative ones for a reference that crosses zero.
+  m.crosses_zero = crosses_zero(ref, req.window);
+  m.ref_range = window_range(ref, req.window);
+  const double range = m.ref_range;
+  if (req.relative) {
+    const auto [mean_abs, max_abs] = range_sample_errors(s, ref, req.window, range);
+    m.mean_abs_range_error = mean_abs;
+    m.max_abs_range_error = max_abs;
+  }
+  if (req.peak) m.peak_range_error = over_range(m.peak.value, m.ref_peak.value, range);
+  if (req.impulse) {
+    const double span = req.impulse_window.t1 - req.impulse_window.t0;
+    m.impulse_range_error = over_range(m.impulse, m.ref_impulse, range * span);
+  }
+  if (req.mean) m.mean_range_error = over_range(m.mean, m.ref_mean, range);
+  if (req.peak && req.filter > 0.0)
+    m.filtered_peak_range_error =
+        over_range(m.filtered_peak.value, m.ref_filtered_peak.value, range);
+  if (m.crosses_zero) {
+    m.rel = RelativeError{};
+    m.peak_error = m.impulse_error = m.mean_error = m.filtered_peak_error = kNaN;
+  }
   return m;
+}
+
+FirstHarmonic first_harmonic(const Series& s, double period, Window w) {
+  FirstHarmonic h;
+  std::vector<double> t, v;
+  for (std::size_t i = 0; i < s.t.size(); ++i)
+    if (w.contains(s.t[i]) && std::isfinite(s.v[i])) t.push_back(s.t[i]), v.push_back(s.v[i]);
+  if (t.size() < 3 || !(period > 0.0) || t.back() - t.front() < 0.5 * period) return h;
+  const double omega = 2.0 * M_PI / period;
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(t.size()), 3);
+  Eigen::VectorXd b(static_cast<Eigen::Index>(t.size()));
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const auto r = static_cast<Eigen::Index>(i);
+    a(r, 0) = 1.0;
+    a(r, 1) = std::cos(omega * t[i]);
+    a(r, 2) = std::sin(omega * t[i]);
+    b[r] = v[i];
+  }
+  const Eigen::Vector3d c = a.colPivHouseholderQr().solve(b);
+  h.amplitude = std::hypot(c[1], c[2]);
+  h.phase = std::atan2(c[2], c[1]);
+  return h;
 }
 
 const std::vector<std::string>& metric_names() {
@@ -327,7 +428,19 @@ const std::vector<std::string>& metric_names() {
                                                  "mean_error",
                                                  "filtered_peak",
                                                  "ref_filtered_peak",
-                                                 "filtered_peak_error"};
+                                                 "filtered_peak_error",
+                                                 "amplitude",
+                                                 "ref_amplitude",
+                                                 "amplitude_error",
+                                                 "phase_error",
+                                                 "crosses_zero",
+                                                 "ref_range",
+                                                 "mean_abs_range_error",
+                                                 "max_abs_range_error",
+                                                 "peak_range_error",
+                                                 "impulse_range_error",
+                                                 "mean_range_error",
+                                                 "filtered_peak_range_error"};
   return names;
 }
 
@@ -356,6 +469,18 @@ double metric_value(const GaugeMetrics& m, const std::string& name) {
   if (name == "filtered_peak") return m.filtered_peak.value;
   if (name == "ref_filtered_peak") return m.ref_filtered_peak.value;
   if (name == "filtered_peak_error") return m.filtered_peak_error;
+  if (name == "amplitude") return m.amplitude;
+  if (name == "ref_amplitude") return m.ref_amplitude;
+  if (name == "amplitude_error") return m.amplitude_error;
+  if (name == "phase_error") return m.phase_error;
+  if (name == "crosses_zero") return m.crosses_zero ? 1.0 : 0.0;
+  if (name == "ref_range") return m.ref_range;
+  if (name == "mean_abs_range_error") return m.mean_abs_range_error;
+  if (name == "max_abs_range_error") return m.max_abs_range_error;
+  if (name == "peak_range_error") return m.peak_range_error;
+  if (name == "impulse_range_error") return m.impulse_range_error;
+  if (name == "mean_range_error") return m.mean_range_error;
+  if (name == "filtered_peak_range_error") return m.filtered_peak_range_error;
   std::string known;
   for (const auto& n : metric_names()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown metric '" + name + "' (known: " + known + ")");

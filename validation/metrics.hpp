@@ -112,6 +112,19 @@ RelativeError relative_error(const Series& s, const Series& ref, Window w,
 double integral(const Series& s, Window w);
 Peak boxcar_peak(const Series& s, Window w, double tau);
 
+// Whether a reference crosses zero in a window: its finite samples there reach below
+// -tolerance * R and above +tolerance * R, R = max - min (their peak-to-peak range). A percent
+// error |run - ref| / |ref| means nothing for such a signal (a wave elevation, an oscillating
+// force: the denominator passes through zero), so compute_metrics gives no relative errors for
+// it and reports the range-normalised ones (*_range_error) instead. The tolerance keeps a
+// pressure record with a little noise below zero (dry probe, cavitation spikes) on the
+// relative side.
+constexpr double kZeroCrossingTolerance = 0.05;
+bool crosses_zero(const Series& ref, Window w, double tolerance = kZeroCrossingTolerance);
+
+// Peak-to-peak range of the finite samples of `s` inside w (NaN when there are none).
+double window_range(const Series& s, Window w);
+
 // What to compute for one gauge against one reference.
 struct MetricRequest {
   Window window;                   // for NRMSE and the relative errors
@@ -126,6 +139,10 @@ struct MetricRequest {
   bool mean = false;  // time mean over mean_window (integral / duration)
   Window mean_window;
   double filter = 0.0;  // > 0: the peak of the boxcar average of this width too
+  // > 0: first-harmonic amplitude and phase at this period (normalised time units) by least
+  // squares over harmonic_window (waves: wave height and phase against theory or interFoam).
+  double harmonic_period = 0.0;
+  Window harmonic_window;
 };
 
 // All metrics for one series against one reference. Unrequested or undefined entries are NaN.
@@ -146,13 +163,47 @@ struct GaugeMetrics {
   double mean_error = std::numeric_limits<double>::quiet_NaN();           // relative
   Peak filtered_peak, ref_filtered_peak;                                  // in peak_window
   double filtered_peak_error = std::numeric_limits<double>::quiet_NaN();  // relative
+  // First harmonic at harmonic_period: amplitudes a1 (half the wave height of a sinusoid),
+  // amplitude_error = a1 / a1_ref - 1, and phase_error = (phi - phi_ref) / 2 pi in periods,
+  // wrapped to [-0.5, 0.5): positive when the series lags the reference.
+  double amplitude = std::numeric_limits<double>::quiet_NaN();
+  double ref_amplitude = std::numeric_limits<double>::quiet_NaN();
+  double amplitude_error = std::numeric_limits<double>::quiet_NaN();
+  double phase_error = std::numeric_limits<double>::quiet_NaN();
+
+  // Range-normalised errors: the same differences divided by R, the reference's peak-to-peak
+  // range in the metric window (the impulse's by R times the impulse window's length, i.e. the
+  // difference of the window means over R). Computed for every signal; for one that crosses
+  // zero (crosses_zero) they replace the relative errors above, which are then NaN. The
+  // amplitude_error stays relative for every signal: a first-harmonic amplitude is a positive
+  // magnitude, never near zero where the signal crosses it.
+  bool crosses_zero = false;
+  double ref_range = std::numeric_limits<double>::quiet_NaN();             // R
+  double mean_abs_range_error = std::numeric_limits<double>::quiet_NaN();  // mean |s - r| / R
+  double max_abs_range_error = std::numeric_limits<double>::quiet_NaN();   // max |s - r| / R
+  double peak_range_error = std::numeric_limits<double>::quiet_NaN();      // (peak - ref) / R
+  double impulse_range_error = std::numeric_limits<double>::quiet_NaN();   // dI / (R T)
+  double mean_range_error = std::numeric_limits<double>::quiet_NaN();      // (mean - ref) / R
+  double filtered_peak_range_error = std::numeric_limits<double>::quiet_NaN();
 };
+
+// First-harmonic amplitude and phase of s at `period` over w (least squares with a mean, as
+// fit_harmonics in wave_analysis.hpp): s ~ a0 + a cos(2 pi t / period - phi). NaN amplitude and
+// phase when the window holds fewer than 3 samples or less than half a period.
+struct FirstHarmonic {
+  double amplitude = std::numeric_limits<double>::quiet_NaN();
+  double phase = std::numeric_limits<double>::quiet_NaN();  // [rad]
+};
+FirstHarmonic first_harmonic(const Series& s, double period, Window w);
 GaugeMetrics compute_metrics(const Series& s, const Series& ref, const MetricRequest& req);
 
 // Named access for tables and targets: nrmse, rms, peak, ref_peak, peak_time, ref_peak_time,
 // peak_error, peak_time_error, arrival, ref_arrival, arrival_error, mean_rel_error,
 // max_rel_error, mean_signed_rel_error, samples, impulse, ref_impulse, impulse_error, mean,
-// ref_mean, mean_error, filtered_peak, ref_filtered_peak, filtered_peak_error. Throws
+// ref_mean, mean_error, filtered_peak, ref_filtered_peak, filtered_peak_error, amplitude,
+// ref_amplitude, amplitude_error, phase_error, crosses_zero (1 or 0), ref_range,
+// mean_abs_range_error, max_abs_range_error, peak_range_error, impulse_range_error,
+// mean_range_error, filtered_peak_range_error. Throws
 // std::invalid_argument for other names.
 double metric_value(const GaugeMetrics& m, const std::string& name);
 const std::vector<std::string>& metric_names();

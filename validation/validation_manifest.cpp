@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "io/case_file.hpp"
+#include "io/resources.hpp"
 
 namespace swell {
 namespace {
@@ -172,14 +173,22 @@ Manifest load_manifest(const std::string& path) {
   if (!refs.IsSequence()) rd.fail(refs, "references", "expected a list of {name, file, label}");
   for (std::size_t i = 0; i < refs.size(); ++i) {
     const std::string p = "references[" + std::to_string(i) + "]";
-    rd.check_keys(refs[i], p, {"name", "file", "label"});
+    rd.check_keys(refs[i], p, {"name", "file", "label", "theory"});
     ManifestReference r;
     r.name = rd.text(rd.require(refs[i], p, "name"), p + ".name");
     if (r.name == "openfoam")
       rd.fail(refs[i]["name"], p + ".name", "'openfoam' is reserved for the OpenFOAM runs");
-    r.file = resolve(m.dir, rd.text(rd.require(refs[i], p, "file"), p + ".file"));
-    if (!fs::exists(r.file))
-      rd.fail(refs[i]["file"], p + ".file", "the reference file " + r.file + " does not exist");
+    if (refs[i]["theory"]) {
+      r.theory = rd.text(refs[i]["theory"], p + ".theory");
+      if (r.theory != "paddle")
+        rd.fail(refs[i]["theory"], p + ".theory",
+                "expected 'paddle' (the case's wave-paddle theory), got '" + r.theory + "'");
+      if (refs[i]["file"]) rd.fail(refs[i]["file"], p + ".file", "a theory reference has no file");
+    } else {
+      r.file = resolve(m.dir, rd.text(rd.require(refs[i], p, "file"), p + ".file"));
+      if (!fs::exists(r.file))
+        rd.fail(refs[i]["file"], p + ".file", "the reference file " + r.file + " does not exist");
+    }
     r.label = refs[i]["label"] ? rd.text(refs[i]["label"], p + ".label") : r.name;
     if (m.reference(r.name)) rd.fail(refs[i], p + ".name", "'" + r.name + "' given twice");
     m.references.push_back(r);
@@ -193,7 +202,7 @@ Manifest load_manifest(const std::string& path) {
     rd.check_keys(
         g, p,
         {"gauge", "normalisation", "reference", "window", "peak_window", "arrival_threshold",
-         "relative", "min_reference", "impulse_window", "mean_window", "filter"});
+         "relative", "min_reference", "impulse_window", "mean_window", "filter", "harmonic"});
     ManifestGauge mg;
     mg.gauge = rd.text(rd.require(g, p, "gauge"), p + ".gauge");
     mg.normalisation = rd.text(rd.require(g, p, "normalisation"), p + ".normalisation");
@@ -240,6 +249,17 @@ Manifest load_manifest(const std::string& path) {
         rd.fail(g["filter"], p + ".filter", "expected a width > 0 (normalised time)");
       if (!g["peak_window"])
         rd.fail(g["filter"], p + ".filter", "needs peak_window (the filtered peak is found there)");
+    }
+    if (g["harmonic"]) {
+      const YAML::Node h = g["harmonic"];
+      const std::string hp = p + ".harmonic";
+      if (!h.IsMap()) rd.fail(h, hp, "expected {period: T, window: [t0, t1]}");
+      rd.check_keys(h, hp, {"period", "window"});
+      mg.request.harmonic_period = rd.number(rd.require(h, hp, "period"), hp + ".period");
+      if (!(mg.request.harmonic_period > 0.0))
+        rd.fail(h["period"], hp + ".period", "expected a period > 0 (normalised time)");
+      mg.request.harmonic_window =
+          h["window"] ? rd.window(h["window"], hp + ".window") : mg.request.window;
     }
     m.gauges.push_back(mg);
   }
@@ -332,14 +352,20 @@ std::string find_manifest(const std::string& name, const std::string& search_roo
   const fs::path given(name);
   if (fs::is_regular_file(given)) return given.string();
   candidates(given);
-  candidates(fs::path("validation") / name);
   if (!search_root.empty()) candidates(fs::path(search_root) / "validation" / name);
-  std::string list;
+  std::vector<std::string> listed;
   for (const auto& t : tried) {
     if (fs::is_regular_file(t)) return t.string();
-    list += (list.empty() ? "" : ", ") + t.string();
+    listed.push_back(t.string());
   }
-  throw ManifestError("no validation manifest for '" + name + "' (tried " + list + ")");
+  // Then Swell's own manifests: $SWELL_HOME, the install prefix, the source tree.
+  if (given.is_relative() && !name.empty()) {
+    const auto found =
+        find_data_file((fs::path("validation") / name / "validation.yaml").string(), &listed);
+    if (found && fs::is_regular_file(*found)) return found->string();
+  }
+  throw ManifestError("no validation manifest for '" + name + "' (tried " + tried_list(listed) +
+                      "); " + data_roots_hint());
 }
 
 CaseSpec load_manifest_case(const Manifest& m, double dp, double end_time) {

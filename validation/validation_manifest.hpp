@@ -32,8 +32,11 @@ struct Normalisation {
 
 struct ManifestReference {
   std::string name;   // used by gauges[].reference and targets[].against
-  std::string file;   // resolved path of the CSV
+  std::string file;   // resolved path of the CSV ("" for a theory reference)
   std::string label;  // legend text
+  // "paddle": no file; the series is the case's wave-paddle theory at the gauge named by the
+  // column (validation/wave_theory.hpp), computed by `swell validate`.
+  std::string theory;
 };
 
 // One gauge to compare: its reference columns and the metric windows (normalised time).
@@ -78,9 +81,10 @@ struct Manifest {
 // Reads and checks a manifest. Throws ManifestError naming the file, line and key.
 Manifest load_manifest(const std::string& path);
 
-// Finds the manifest for `name`: a path to a manifest file or to its folder, or the name of a
-// folder validation/<name>/ under the current directory or `search_root`. Throws ManifestError
-// listing what was tried.
+// Finds the manifest for `name`: a path to a manifest file or to its folder, else
+// `search_root`/validation/<name>/, else validation/<name>/ of Swell's data (io/resources:
+// $SWELL_HOME, the install prefix's share/swell, the source tree). Throws ManifestError listing
+// what was tried.
 std::string find_manifest(const std::string& name, const std::string& search_root = "");
 
 // The case of a manifest, with the manifest's extra gauges and end time applied, and dp set to

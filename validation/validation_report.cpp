@@ -11,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/resources.hpp"
+
 namespace swell {
 namespace {
 
@@ -38,21 +40,11 @@ bool python_has_matplotlib(const std::string& python) {
   return std::system(cmd.c_str()) == 0;
 }
 
+// $SWELL_PLOT_SCRIPT, else validation/plot_validation.py of Swell's data (io/resources).
 std::string find_plot_script() {
   if (const char* env = std::getenv("SWELL_PLOT_SCRIPT"); env && fs::exists(env)) return env;
-  std::vector<fs::path> bases;
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    fs::path p = exe.parent_path();
-    for (int up = 0; up < 4 && !p.empty(); ++up, p = p.parent_path()) bases.push_back(p);
-  }
-  bases.push_back(fs::current_path());
-  for (const auto& b : bases) {
-    const fs::path s = b / "validation" / "plot_validation.py";
-    if (fs::exists(s)) return s.string();
-  }
-  return "";
+  const auto found = find_data_file("validation/plot_validation.py");
+  return found ? found->string() : "";
 }
 
 }  // namespace
@@ -102,7 +94,13 @@ void write_metrics_csv(const std::string& path, const std::vector<MetricRow>& ro
       << "# nrmse = RMS(run - ref) / (max ref - min ref) over the reference samples in the "
          "window;\n"
       << "# peak_error = (peak - ref_peak)/|ref_peak|, peaks = maxima in the peak window;\n"
-      << "# *_rel_error = |run - ref|/|ref| at the reference samples (mean, max; signed mean).\n";
+      << "# *_rel_error = |run - ref|/|ref| at the reference samples (mean, max; signed mean);\n"
+      << "# crosses_zero = 1: the reference crosses zero in the window (below -"
+      << format_number(100.0 * kZeroCrossingTolerance) << " % and above +"
+      << format_number(100.0 * kZeroCrossingTolerance) << " % of its\n"
+      << "# range R = ref_range): no relative errors (empty), use the *_range_error\n"
+      << "# columns = difference / R (mean/max_abs: |run - ref|/R at the reference samples;\n"
+      << "# impulse: / (R x impulse window)), given for every row.\n";
   out << "run,kind,resolution,gauge,reference,normalisation";
   for (const auto& n : metric_names()) out << "," << n;
   out << ",peak_time_error_s,arrival_error_s\n";
@@ -172,8 +170,8 @@ bool make_plots(const std::vector<PlotSpec>& plots, const std::string& plot_dir,
   if (script.empty()) {
     if (why)
       *why =
-          "validation/plot_validation.py not found (set SWELL_PLOT_SCRIPT); the plot "
-          "specification is in " +
+          "validation/plot_validation.py not found (set SWELL_HOME or SWELL_PLOT_SCRIPT); the "
+          "plot specification is in " +
           spec;
     return false;
   }
@@ -194,20 +192,75 @@ std::string format_number(double v, int digits) {
   return buf;
 }
 
+std::string length_text(double metres) {
+  if (!(metres > 0.0) || !std::isfinite(metres)) return "";
+  if (metres < 0.1) return format_number(1000.0 * metres, 3) + " mm";
+  return format_number(metres, 3) + " m";
+}
+
+std::string run_display_label(const RunInfo& info, const std::string& fallback) {
+  const std::string size = length_text(info.resolution);
+  if (info.kind == "sph") return size.empty() ? "SPH" : "SPH dp " + size;
+  if (info.kind == "openfoam") return size.empty() ? "interFoam" : "interFoam " + size + " cells";
+  return fallback;
+}
+
+std::string axis_label(const std::string& label, const std::string& unit, double scale) {
+  if (label.find('[') != std::string::npos) return label;
+  if (scale == 1.0 && !unit.empty()) return label + " [" + unit + "]";
+  if (scale == 1.0 && unit.empty()) return label;
+  return label + " [-]";
+}
+
+std::string markdown_plot_list(const std::vector<PlotSpec>& plots, const std::string& plot_dir) {
+  std::ostringstream md;
+  for (const auto& p : plots) {
+    md << "![" << p.title << "](plots/" << p.png << ")\n\n";
+    const fs::path stem = fs::path(p.png).replace_extension();
+    for (const char* ext : {".svg", ".pdf"}) {
+      const std::string name = stem.string() + ext;
+      if (fs::exists(fs::path(plot_dir) / name)) {
+        md << "Vector copy: [" << name << "](plots/" << name << ")\n\n";
+        break;
+      }
+    }
+  }
+  return md.str();
+}
+
 std::string markdown_metrics_table(const std::vector<MetricRow>& rows) {
   std::ostringstream md;
   md << "| gauge | run | against | NRMSE | peak | ref. peak | peak err. | peak time err. [s] "
-        "| arrival err. [s] | mean rel. err. | max rel. err. |\n"
+        "| arrival err. [s] | mean err. | max err. |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto pct = [](double v) { return std::isfinite(v) ? format_number(100.0 * v, 3) + " %" : "–"; };
+  // A relative error as a percentage, or, where the reference crosses zero, the range-normalised
+  // one as a fraction of R.
+  auto err = [&](const MetricRow& r, double relative, double over_range) {
+    if (!r.m.crosses_zero) return pct(relative);
+    return std::isfinite(over_range) ? format_number(over_range, 3) + " R" : std::string("–");
+  };
+  bool any_crossing = false;
   for (const auto& r : rows) {
+    any_crossing = any_crossing || r.m.crosses_zero;
     md << "| " << r.gauge << " | " << r.run << " | " << r.reference << " | "
        << format_number(r.m.rms.nrmse) << " | " << format_number(r.m.peak.value) << " | "
-       << format_number(r.m.ref_peak.value) << " | " << pct(r.m.peak_error) << " | "
-       << format_number(row_value(r, "peak_time_error_s")) << " | "
-       << format_number(row_value(r, "arrival_error_s")) << " | " << pct(r.m.rel.mean_abs) << " | "
-       << pct(r.m.rel.max_abs) << " |\n";
+       << format_number(r.m.ref_peak.value) << " | " << err(r, r.m.peak_error, r.m.peak_range_error)
+       << " | " << format_number(row_value(r, "peak_time_error_s")) << " | "
+       << format_number(row_value(r, "arrival_error_s")) << " | "
+       << err(r, r.m.rel.mean_abs, r.m.mean_abs_range_error) << " | "
+       << err(r, r.m.rel.max_abs, r.m.max_abs_range_error) << " |\n";
   }
+  md << "\nErrors in % are relative (|run - ref| / |ref| at the reference samples; peak: "
+        "relative to the reference peak).";
+  if (any_crossing)
+    md << " Errors marked R are for references that cross zero in the window (below -"
+       << format_number(100.0 * kZeroCrossingTolerance) << " % and above +"
+       << format_number(100.0 * kZeroCrossingTolerance)
+       << " % of their range): a percent error is meaningless there, so the difference is "
+          "divided by R, the reference's peak-to-peak range in the window (impulse: by R times "
+          "the impulse window).";
+  md << "\n";
   // Loads, where a gauge asked for them (impulse, post-impact mean, filtered peak).
   bool loads = false;
   for (const auto& r : rows)
@@ -220,11 +273,12 @@ std::string markdown_metrics_table(const std::vector<MetricRow>& rows) {
   for (const auto& r : rows) {
     md << "| " << r.gauge << " | " << r.run << " | " << r.reference << " | "
        << format_number(r.m.impulse) << " | " << format_number(r.m.ref_impulse) << " | "
-       << pct(r.m.impulse_error) << " | " << format_number(r.m.mean) << " | "
-       << format_number(r.m.ref_mean) << " | " << pct(r.m.mean_error) << " | "
+       << err(r, r.m.impulse_error, r.m.impulse_range_error) << " | " << format_number(r.m.mean)
+       << " | " << format_number(r.m.ref_mean) << " | "
+       << err(r, r.m.mean_error, r.m.mean_range_error) << " | "
        << format_number(r.m.filtered_peak.value) << " | "
-       << format_number(r.m.ref_filtered_peak.value) << " | " << pct(r.m.filtered_peak_error)
-       << " |\n";
+       << format_number(r.m.ref_filtered_peak.value) << " | "
+       << err(r, r.m.filtered_peak_error, r.m.filtered_peak_range_error) << " |\n";
   }
   return md.str();
 }

@@ -12,7 +12,9 @@ case file (gauge positions, depth, period, caisson face and crest), and writes t
                          waves/goda.cpp only; this script interpolates its table)
   goda_comparison.csv    per probe: height, Goda's p, the measured per-wave maxima (mean, min,
                          max over the window) and their ratio to Goda; then the force rows
-  goda_comparison.png    the distribution against the probes, and the force record
+  goda_comparison.png    the distribution against the probes, and the force record (and
+                         goda_comparison.svg beside it); the legend names the run "SPH dp
+                         10 mm" from --dp, else the run's run_info.yaml, else the case's dp
 
 Method (all stated in the output too):
   * still-water reference: each probe's and the force's mean over the still window (after the
@@ -46,9 +48,10 @@ import sys
 
 import numpy as np
 
-import matplotlib
+sys.dont_write_bytecode = True  # no __pycache__ beside the script (an installed tree)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from plot_style import length_text, save  # noqa: E402  (validation/plot_style.py; Agg backend)
 
-matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
@@ -93,6 +96,21 @@ def case_numbers(path):
         "face_x": float(caisson.group(1)),
         "crest": 0.6,  # cases/geometry/caisson_vertical.stl is 0.6 m high, on the bed
     }
+
+
+def run_dp(run, case_path, given):
+    """The run's particle spacing [m] and where it was read: --dp, run_info.yaml, the case."""
+    if given:
+        return given, "--dp"
+    info = os.path.join(run, "run_info.yaml")
+    if os.path.exists(info):
+        m = re.search(r"^resolution:\s*([0-9.eE+-]+)", open(info).read(), re.M)
+        if m:
+            return float(m.group(1)), info
+    m = re.search(r"^dp:\s*([0-9.eE+-]+)", open(case_path).read(), re.M)
+    if not m:
+        raise SystemExit(f"{case_path}: no 'dp:' line, and no --dp or {info}")
+    return float(m.group(1)), case_path
 
 
 def first_harmonic(t, y, omega):
@@ -152,7 +170,12 @@ def main(argv):
     ap.add_argument("--window", default="5.5,8.5", help="steady window t0,t1 [s]")
     ap.add_argument("--still", default="1.0,2.0", help="still-water window t0,t1 [s]")
     ap.add_argument("--label", default="", help="text for the plot title (dp, wall time)")
+    ap.add_argument("--dp", type=float, default=None,
+                    help="the run's particle spacing [m] for the legend (default: the run's "
+                    "run_info.yaml, else the case file's dp)")
     args = ap.parse_args(argv)
+    if args.dp is not None and not args.dp > 0:
+        ap.error("--dp: expected a particle spacing > 0 [m], got %g" % args.dp)
     t0, t1 = (float(v) for v in args.window.split(","))
     s0, s1 = (float(v) for v in args.still.split(","))
     os.makedirs(args.out, exist_ok=True)
@@ -271,42 +294,56 @@ def main(argv):
                 % (scal["force [N/m]"], f_probe.mean(), f_probe.min(), f_probe.max(),
                    f_probe.mean() / scal["force [N/m]"]))
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5), gridspec_kw={"width_ratios": [1, 1.6]})
-    ax1.plot(gp, gz, "k-", label="Goda, H = %.4g m (incident)" % h_inc)
+    dp, dp_from = run_dp(args.run, args.case, args.dp)
+    sph = "SPH dp " + length_text(dp)
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 5.2),
+                                   gridspec_kw={"width_ratios": [1, 1.6]})
+    ax1.plot(gp, gz, color="black", ls="-", lw=1.3,
+             label="Goda (1974, 2000), H = %.4g m (incident)" % h_inc)
     ym = np.array([r[2] for r in rows])
     ax1.errorbar([r[4] for r in rows], ym,
                  xerr=[[r[4] - r[5] for r in rows], [r[6] - r[4] for r in rows]],
-                 fmt="o", color="C0", capsize=3,
-                 label="SPH maximum of the group" if c["focused"] else
-                 "SPH per-wave maxima (mean, range)")
-    ax1.plot(p_linear, zl, "k:", label="linear standing wave (reference)")
+                 fmt="o", color="#0072B2", mfc="white", mew=1.3, capsize=3,
+                 label=sph + (", maximum of the group" if c["focused"] else
+                              ", per-wave maxima (mean, range)"))
+    ax1.plot(p_linear, zl, color="0.35", ls=(0, (1, 1.5)), lw=1.5,
+             label="linear standing wave (reference)")
     ax1.axhline(0.0, color="0.6", lw=0.8)
+    ax1.text(ax1.get_xlim()[0], 0.0, " SWL", ha="left", va="bottom", fontsize=7, color="0.4")
     ax1.set_xlabel("wave pressure p [Pa]")
     ax1.set_ylabel("z above SWL [m]")
-    ax1.set_title("pressure on the seaward face")
-    ax1.legend(fontsize=7, loc="upper right")
+    ax1.set_title("pressure on the seaward face", fontsize=10)
+    ax1.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), frameon=False)
     ax1.grid(alpha=0.3)
-    ax2.plot(tf, fx - f0, color="0.75", lw=0.6, label="F_x - still (raw)")
-    ax2.plot(tf, fx_box, color="C0", lw=1.0, label="F_x - still, %.2g s boxcar" % width_s)
-    ax2.plot(tp, probe_force, color="C2", lw=0.8, label="from the probes")
-    ax2.axhline(scal["force [N/m]"], color="k", ls="--", label="Goda %.4g N/m" % scal["force [N/m]"])
-    ax2.axvspan(t0, tw1, color="C1", alpha=0.12, label="window")
+    ax2.plot(tf, fx - f0, color="0.7", ls="-", lw=0.6, label=sph + ", F_x - still (raw)")
+    ax2.plot(tf, fx_box, color="#0072B2", ls="-", lw=1.2,
+             label=sph + ", F_x - still, %.2g s boxcar" % width_s)
+    ax2.plot(tp, probe_force, color="#009E73", ls="--", lw=1.1,
+             label=sph + ", from the pressure probes")
+    ax2.axhline(scal["force [N/m]"], color="black", ls="-.", lw=1.2,
+                label="Goda %.4g N/m" % scal["force [N/m]"])
+    ax2.axvspan(t0, tw1, color="0.5", alpha=0.08, lw=0, zorder=0)
+    for x in (t0, tw1):
+        ax2.axvline(x, color="0.45", lw=0.8, ls=(0, (4, 3)))
+    ax2.text(0.5 * (t0 + tw1), 0.98, "maxima window", transform=ax2.get_xaxis_transform(),
+             ha="center", va="top", fontsize=7, color="0.25",
+             bbox=dict(facecolor="white", edgecolor="none", alpha=0.8, pad=0.5))
     ax2.set_xlabel("t [s]")
-    ax2.set_ylabel("horizontal wave force [N/m]")
-    ax2.set_title("force on the caisson")
-    ax2.legend(fontsize=8, loc="lower left")
+    ax2.set_ylabel("horizontal wave force per metre [N/m]")
+    ax2.set_title("force on the caisson (2D: per metre of width)", fontsize=10)
+    ax2.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2,
+               frameon=False, handlelength=3.2)
     ax2.grid(alpha=0.3)
     name = os.path.splitext(os.path.basename(args.case))[0]
-    fig.suptitle("%s vs Goda: %s" % (name, args.label), fontsize=10)
-    fig.tight_layout()
-    png = os.path.join(args.out, "goda_comparison.png")
-    fig.savefig(png, dpi=110)
+    fig.suptitle("%s vs Goda: %s" % (name, args.label or sph), fontsize=10)
+    png, svg = save(fig, os.path.join(args.out, "goda_comparison.png"), dpi=110)
+    print("legend: %s (dp from %s)" % (sph, dp_from))
 
     print(report, end="")
     print("incident H %.5g m (target %.5g), reflected %.5g m, Kr %.4g; window %.3g-%.3g s, %d waves"
           % (h_inc, c["height"], h_ref, h_ref / h_inc, t0, tw1, n_periods))
     print(open(table).read(), end="")
-    print("wrote %s, %s, %s" % (dist_csv, table, png))
+    print("wrote %s, %s, %s, %s" % (dist_csv, table, png, svg))
     return 0
 
 

@@ -9,7 +9,13 @@ value of the R column; R_rest its first row (the shoreline at rest, which the di
 below the still-water level), and R_max - R_rest the runup corrected for that offset. Both are
 listed against the law R/d = 2.831 sqrt(cot beta) (H/d)^(5/4) and the mean of the lab points
 within +-0.005 of the run's H/d (../shared/reference/synolakis_1987_runup_lab.csv; lab waves break
-for H/d > 0.045). Writes runup_table.csv and runup.png (matplotlib, numpy only).
+for H/d > 0.045). Writes runup_table.csv, runup.png and runup.svg beside it (matplotlib, numpy
+only). The legend names each run by method and particle spacing from the case written by
+make_case.py ("Swell SPH dp 15 mm"); axes are the dimensionless H/d and R/d.
+
+  python3 validation/synolakis/runup_table.py --replot validation/synolakis/results/runup_table.csv
+
+redraws the figure from a table written earlier (no run folders needed).
 """
 import argparse
 import csv
@@ -17,6 +23,7 @@ import glob
 import math
 import os
 import re
+import sys
 
 import numpy as np
 
@@ -62,13 +69,74 @@ def read_run(folder):
     return dict(meta, r_max=r[k], t_max=t[k], r_rest=r[0], t_end=t[-1], wall=wall)
 
 
+def read_table(path):
+    """The rows of a runup_table.csv written by this script (numbers as floats)."""
+    with open(path) as fh:
+        reader = csv.DictReader(l for l in fh if not l.startswith("#"))
+        rows = []
+        for r in reader:
+            rows.append({k: (float(v) if k not in ("breaking_in_lab", "wall_s") else v)
+                         for k, v in r.items()})
+    need = {"H_over_d", "dp_m", "R_over_d", "R_corr_over_d"}
+    if not rows or not need <= set(rows[0]):
+        sys.stderr.write(f"{path}: expected a runup_table.csv with rows and the columns "
+                         f"{', '.join(sorted(need))}\n")
+        sys.exit(2)
+    return rows
+
+
+def plot(rows, lab_h, lab_r, png):
+    sys.dont_write_bytecode = True  # no __pycache__ beside the script (an installed tree)
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    from plot_style import length_text, save  # sets the Agg backend
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4.8))
+    ax.loglog(lab_h, lab_r, ls="none", marker="o", ms=3.5, mfc="none", mec="black", mew=0.8,
+              label="experiment (Synolakis 1987, lab points)")
+    hh = np.logspace(np.log10(0.005), np.log10(0.7), 100)
+    ax.loglog(hh, [law(h) for h in hh], color="black", ls="--", lw=1,
+              label="runup law 2.831 sqrt(cot beta) (H/d)^1.25")
+    ax.axvline(0.045, color="0.6", lw=0.8, ls=":")
+    ax.text(0.047, 0.012, "breaking (lab)", color="0.4", fontsize=8)
+    for dp in sorted({r["dp_m"] for r in rows}):
+        sel = [r for r in rows if r["dp_m"] == dp]
+        hs = [r["H_over_d"] for r in sel]
+        name = "Swell SPH dp " + length_text(dp)
+        ax.loglog(hs, [r["R_over_d"] for r in sel], ls="none", marker="s", ms=7, color="#D55E00",
+                  label=name + ", R max")
+        ax.loglog(hs, [r["R_corr_over_d"] for r in sel], ls="none", marker="^", ms=7,
+                  mfc="white", mew=1.3, color="#0072B2", label=name + ", R max - R at rest")
+    negative = [r for r in rows if r["R_over_d"] <= 0]
+    if negative:  # a log axis cannot show them: say so on the plot
+        ax.text(0.02, 0.97, "R max <= 0, not on the log axis:\n" + "\n".join(
+            "H/d %.3g: R/d %.3g" % (r["H_over_d"], r["R_over_d"]) for r in negative),
+            transform=ax.transAxes, ha="left", va="top", fontsize=7, color="#D55E00")
+    ax.set_xlabel("H/d, wave height / depth [-]")
+    ax.set_ylabel("R/d, maximum runup / depth [-]")
+    ax.set_ylim(0.01, 2)
+    ax.grid(True, which="both", alpha=0.25)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1,
+              frameon=False)
+    ax.set_title("Solitary-wave runup on a 1:19.85 beach")
+    save(fig, png)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("runs", nargs="+")
+    ap.add_argument("runs", nargs="*")
     ap.add_argument("-o", "--out", default="validation/synolakis/results")
     ap.add_argument("--lab", default=LAB)
+    ap.add_argument("--replot", metavar="TABLE", help="redraw runup.png/.svg from this table")
     a = ap.parse_args()
     lab_h, lab_r = read_lab(a.lab)
+    if a.replot:
+        if not os.path.isfile(a.replot):
+            ap.error(f"--replot {a.replot}: no such file (a runup_table.csv written earlier)")
+        out = os.path.dirname(os.path.abspath(a.replot))
+        plot(read_table(a.replot), lab_h, lab_r, os.path.join(out, "runup.png"))
+        return
+    if not a.runs:
+        ap.error("give run folders, or --replot TABLE")
     os.makedirs(a.out, exist_ok=True)
     rows = []
     for folder in a.runs:
@@ -94,28 +162,7 @@ def main():
         for r in rows:
             w.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in r.items()})
     print(open(path).read())
-
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6, 4.5))
-    ax.loglog(lab_h, lab_r, "k.", label="Synolakis (1987) lab")
-    hh = np.logspace(np.log10(0.005), np.log10(0.7), 100)
-    ax.loglog(hh, [law(h) for h in hh], "k--", lw=1, label="law 2.831 sqrt(cot b) (H/d)^1.25")
-    ax.axvline(0.045, color="0.6", lw=0.8, ls=":")
-    ax.text(0.047, 0.012, "breaking (lab)", color="0.4", fontsize=8)
-    hs = [r["H_over_d"] for r in rows]
-    ax.loglog(hs, [r["R_over_d"] for r in rows], "rs", label="Swell, R max")
-    ax.loglog(hs, [r["R_corr_over_d"] for r in rows], "b^", mfc="none",
-              label="Swell, R max - R at rest")
-    ax.set_xlabel("H/d")
-    ax.set_ylabel("R/d")
-    ax.set_ylim(0.01, 2)
-    ax.legend(fontsize=8)
-    ax.set_title("Solitary-wave runup on a 1:19.85 beach")
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "runup.png"), dpi=120)
-
+    plot(rows, lab_h, lab_r, os.path.join(a.out, "runup.png"))
 
 if __name__ == "__main__":
     main()
