@@ -147,17 +147,6 @@ std::string mega(double pss) {
   return o.str();
 }
 
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) == 0) {
-      const auto c = line.find(':');
-      if (c != std::string::npos) return line.substr(c + 2);
-    }
-  }
-  return "unknown CPU";
-}
-
 }  // namespace
 
 int run_bench(const BenchOptions& opt, std::ostream& log) {
@@ -181,11 +170,20 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
     cases.push_back(*it);
   }
 
+  const Provenance prov = capture_provenance();
+  {
+    RunInfo info;
+    info.header = "how the files in this folder were produced (written by swell bench)";
+    info.kind = "bench";
+    info.date = utc_minutes_now();
+    info.provenance = {prov};
+    write_run_info(out.string(), info);
+  }
   const std::time_t now = std::time(nullptr);
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d", std::localtime(&now));
-  log << "bench: " << cpu_model() << ", " << omp_get_num_procs() << " logical CPUs, " << date
-      << "; " << opt.repeats << " run(s) per point, medians\n";
+  log << "bench: " << prov.cpu << ", " << omp_get_num_procs() << " logical CPUs, " << date << "; "
+      << opt.repeats << " run(s) per point, medians\n";
 
   std::ofstream runs_csv, sum_csv;
   if (!cases.empty()) {
@@ -282,7 +280,7 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
     std::ofstream sw(sweep_csv);
     sw << "# swell bench --sweep: B3D (bench/cases/b3d.yaml) over dp, " << t << " thread(s), "
        << opt.sweep_steps << " timed steps after " << opt.sweep_warmup
-       << " warm-up steps, median of " << opt.repeats << " run(s); " << cpu_model() << ", " << date
+       << " warm-up steps, median of " << opt.repeats << " run(s); " << prov.cpu << ", " << date
        << "\n"
        << "dp,particles,fluid,steps,wall,pss,ns_per_particle_step,ns_per_fluid_particle_step,"
           "neighbour,interaction,integration,rss_peak_mb,bytes_per_particle\n";

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
 
 namespace swell {
@@ -88,7 +89,8 @@ void run_waves_goda(const WavesGodaOptions& opt, std::ostream& out) {
   if (!opt.csv.empty()) {
     std::ostringstream csv;
     char buf[64];
-    csv << "# swell waves goda: Goda (1974, 2000) wave pressure on a vertical wall\n";
+    csv << "# swell waves goda: Goda (1974, 2000) wave pressure on a vertical wall\n"
+        << provenance_text(capture_provenance(), "# ");
     auto meta = [&](const char* key, double v) {
       std::snprintf(buf, sizeof buf, "%.9g", v);
       csv << "# " << key << ": " << buf << "\n";

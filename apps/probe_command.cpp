@@ -9,6 +9,7 @@
 
 #include "apps/gauge_set.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/provenance.hpp"
 
 namespace swell {
 namespace {
@@ -67,7 +68,8 @@ int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadat
   ctx.up_axis = D - 1;
 
   std::ostringstream csv;
-  csv << "# swell probe of " << path << " (case " << meta.case_name << ")\n";
+  csv << "# swell probe of " << path << " (case " << meta.case_name << ")\n"
+      << provenance_text(capture_provenance(), "# ");
   csv << "time [s]";
   for (const auto& c : gauge_columns(g, D)) csv << ',' << c;
   csv << '\n';

@@ -25,7 +25,9 @@
 #include "io/gauge_csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/model_names.hpp"
+#include "io/provenance.hpp"
 #include "io/run_folder.hpp"
+#include "io/run_info.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/physics/shifting.hpp"
@@ -121,7 +123,7 @@ std::string derived_quantities_text(const CaseSpec& spec, const CaseSetup<D>& se
   o << "    B = c0^2 * rho0 / gamma = " << p.c0 << "^2 * " << p.rho0 << " / " << p.gamma << " = "
     << p.tait_b() << " Pa\n";
   o << "    mass = rho0 * dp^dim = " << p.rho0 << " * " << p.dp << "^" << D << " = " << mass
-    << " kg\n";
+    << (D == 2 ? " kg/m (per metre of depth)\n" : " kg\n");
   o << "    dt = cfl * min(dt_f, dt_cv" << (laminar ? ", dt_nu" : "") << "), cfl = " << p.cfl
     << ": dt_f = sqrt(h / max|a|), dt_cv = h / (max c + max_ab h |v_ab.r_ab| / (r_ab^2 + "
        "eta^2)), eta^2 = 0.01 h^2 = "
@@ -141,8 +143,10 @@ std::string derived_quantities_text(const CaseSpec& spec, const CaseSetup<D>& se
 }
 
 template <int D>
-RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const RunSummary& sum) {
+RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const RunSummary& sum,
+                          const Provenance& prov) {
   RunMetadata m;
+  m.provenance = prov;
   m.case_name = spec.name;
   m.case_file = spec.file;
   m.case_text = spec.text;
@@ -181,6 +185,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
     }
   }
   const CaseTag tag{case_identity(spec), spec.name, spec.file};
+  const Provenance prov = capture_provenance();
 
   const auto wall0 = std::chrono::steady_clock::now();
   CaseSetup<D> setup = setup_case<D>(spec);
@@ -256,11 +261,30 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
   gctx.line_top = setup.params.domain_max[D - 1];
   for (std::size_t b = 0; b < setup.bodies.size(); ++b)
     gctx.body_ids[setup.bodies[b].name] = static_cast<int>(b);
-  const RunMetadata meta = make_metadata(spec, setup, sum);
+  const RunMetadata meta = make_metadata(spec, setup, sum, prov);
   // The set-up worked: only now is an earlier run's output removed (--overwrite).
   if (!opt.restart && opt.overwrite) remove_run_files(out_dir);
   fs::create_directories(out / "vtk");
   log.attach(out / "run.log", opt.restart);  // the header so far, then every line
+  // run_info.yaml: how this folder was made, written now (a run that dies still says it) and
+  // again at the end; a restart adds its own entry after the earlier ones.
+  RunInfo info;
+  info.header = "how the files in this folder were produced (written by swell run)";
+  info.kind = "sph";
+  info.resolution = spec.dp;
+  info.size = static_cast<long>(n_total);
+  info.date = utc_minutes_now();
+  if (opt.restart) {
+    try {
+      info.provenance = read_run_info(out_dir).provenance;
+    } catch (const std::runtime_error& e) {
+      // An unreadable record must not stop the restart: say so, keep this command's entry.
+      log << "  warning: earlier provenance not kept: " << e.what() << "\n";
+    }
+  }
+  info.provenance.push_back(prov);
+  info.note = "running";
+  write_run_info(out_dir, info);
 
   // Fresh start or continuation from the last valid checkpoint.
   std::map<std::string, double> schedule;
@@ -363,13 +387,15 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
   }
   const Vec<D> up = Vec<D>::Unit(D - 1);
   const double band = 2.0 * setup.params.h;
-  GaugeCsvFile diag((out / "diagnostics.csv").string(),
-                    {"swell diagnostics, case " + spec.name, "front = largest x of fluid within " +
-                                                                 std::to_string(band) +
-                                                                 " m above the floor, plus dp/2"},
-                    {"steps", "dt [s]", "fluid particles", "fluid mass [kg]", "kinetic energy [J]",
-                     "max speed [m/s]", "front x [m]"},
-                    resume_after);
+  GaugeCsvFile diag(
+      (out / "diagnostics.csv").string(),
+      {"swell diagnostics, case " + spec.name, "front = largest x of fluid within " +
+                                                   std::to_string(band) +
+                                                   " m above the floor, plus dp/2"},
+      // 2D: mass and energy per metre of depth.
+      {"steps", "dt [s]", "fluid particles", D == 2 ? "fluid mass [kg/m]" : "fluid mass [kg]",
+       D == 2 ? "kinetic energy [J/m]" : "kinetic energy [J]", "max speed [m/s]", "front x [m]"},
+      resume_after);
   GaugeSet<D> gauges(spec.gauges, gauge_every, gctx, out_dir, spec.name, resume_after);
   gauges.load_schedule(schedule);
 
@@ -380,13 +406,16 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
     std::snprintf(num, sizeof(num), "_%04d.vtp", snapshot);
     if (spec.vtk) {
       const std::string rel = "vtk/" + spec.name + num;
-      write_vtp<D>((out / rel).string(), sim->particles(), p);
+      write_vtp<D>((out / rel).string(), sim->particles(), p, ParticleFilter::All, &meta.body_names,
+                   sim->time());
       pvd.add(sim->time(), rel);
       if (spec.vtk_split) {
         const std::string rf = "vtk/" + spec.name + "_fluid" + num,
                           rb = "vtk/" + spec.name + "_boundary" + num;
-        write_vtp<D>((out / rf).string(), sim->particles(), p, ParticleFilter::Fluid);
-        write_vtp<D>((out / rb).string(), sim->particles(), p, ParticleFilter::Boundary);
+        write_vtp<D>((out / rf).string(), sim->particles(), p, ParticleFilter::Fluid,
+                     &meta.body_names, sim->time());
+        write_vtp<D>((out / rb).string(), sim->particles(), p, ParticleFilter::Boundary,
+                     &meta.body_names, sim->time());
         pvd_fluid.add(sim->time(), rf);
         pvd_bound.add(sim->time(), rb);
       }
@@ -555,14 +584,28 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
       const auto u = static_cast<std::size_t>(k);
       if (fx.particles[u] == 0) continue;
       s << "    through " << FaceExclusions::name(k) << ": " << fx.particles[u] << " ("
-        << fx.fluid[u] << " fluid, " << fx.fluid_mass[u] << " kg), t = " << fx.first_time[u]
-        << " - " << fx.last_time[u] << " s\n";
+        << fx.fluid[u] << " fluid, " << fx.fluid_mass[u] << (D == 2 ? " kg/m" : " kg")
+        << "), t = " << fx.first_time[u] << " - " << fx.last_time[u] << " s\n";
     }
   }
   s << "  output:         " << out_dir << " (" << sum.snapshots << " snapshots, " << pvd.path()
     << ")\n";
   log << s.str();
-  write_file_atomically((out / "run_summary.txt").string(), s.str());
+  std::string made = "  made by:\n" + provenance_text(prov, "    ");
+  if (opt.restart)
+    made = "  made by (this restart; earlier commands: run_info.yaml):\n" +
+           provenance_text(prov, "    ");
+  write_file_atomically((out / "run_summary.txt").string(), s.str() + made);
+  info.wall_seconds = sum.wall_seconds;
+  info.end_time = sum.sim_time;
+  {
+    std::ostringstream note;
+    note << sum.fluid << " fluid + " << sum.boundary << " boundary particles, " << sum.steps
+         << " steps";
+    if (opt.restart) note << " (restarted at t = " << resume_after << " s)";
+    info.note = note.str();
+  }
+  write_run_info(out_dir, info);
   return sum;
 }
 

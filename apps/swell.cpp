@@ -25,8 +25,8 @@
 #include "io/case_file.hpp"
 #include "io/case_schema.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/provenance.hpp"
 #include "solver/time/simulation.hpp"
-#include "swell/version.hpp"
 #include "validation/validation_manifest.hpp"
 
 namespace {
@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
 
   CLI::App app{"Swell: weakly-compressible SPH for coastal and hydraulic engineering"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("swell ") + SWELL_VERSION);
+  app.set_version_flag("--version", swell::version_text());
 
   std::string case_path, out_dir;
   int threads = 0;

@@ -27,10 +27,36 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string now_utc() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-  return buf;
+  return utc_minutes_now();
+}
+
+// The report's "How this report was made" section, and run_info.yaml beside it.
+std::string provenance_section(const Provenance& p) {
+  std::ostringstream o;
+  o << "## How this report was made\n\n";
+  for (const auto& [k, v] : p.fields()) o << "- " << k << ": `" << v << "`\n";
+  return o.str();
+}
+
+void write_output_info(const std::string& dir, const std::string& kind, const Provenance& p) {
+  RunInfo info;
+  info.header = "how the files in this folder were produced (written by swell " + kind + ")";
+  info.kind = kind;
+  info.date = utc_minutes_now();
+  info.provenance = {p};
+  write_run_info(dir, info);
+}
+
+// How a result was made, for the runs table: the commit and date of the command that wrote
+// it (its run_info.yaml), "recovered" entries as such, or "not recorded".
+std::string made_by(const RunInfo& i) {
+  if (i.provenance.empty()) return "not recorded";
+  const Provenance& p = i.provenance.back();
+  if (!p.recovered.empty()) return "recovered " + p.recovered.substr(0, p.recovered.find(';'));
+  std::string c = p.commit.size() > 12 && p.commit.find_first_not_of("0123456789abcdef") >= 12
+                      ? p.commit.substr(0, 12) + (p.commit.ends_with("-dirty") ? "-dirty" : "")
+                      : p.commit;
+  return "`" + c + "`, " + p.date;
 }
 
 std::string safe_file_name(const std::string& s) {
@@ -262,8 +288,11 @@ CompareSummary run_compare(const CompareOptions& opt, std::ostream& log) {
   } else {
     md << "Plots skipped: " << why << "\n";
   }
+  const Provenance prov = capture_provenance();
+  md << "\n" << provenance_section(prov);
   sum.report = (fs::path(opt.out_dir) / "report.md").string();
   write_text(sum.report, md.str());
+  write_output_info(opt.out_dir, "compare", prov);
   log << "compare: " << rows.size() << " comparisons -> " << sum.metrics_csv << ", " << sum.report
       << "\n";
   return sum;
@@ -292,7 +321,8 @@ void run_sph(const Manifest& m, double dp, double end_time, const std::string& d
   std::ostringstream summary;
   ro.log = &summary;
   const RunSummary s = run_case(spec, ro);
-  RunInfo info;
+  RunInfo info = read_run_info(dir);  // the run's own, with its provenance
+  info.header = "how the gauge files next to this one were produced (written by swell validate)";
   info.kind = "sph";
   info.resolution = dp;
   info.wall_seconds = s.wall_seconds;
@@ -319,6 +349,8 @@ void run_foam(const Manifest& m, double cell, double end_time, const std::string
   const FoamResult r = run_foam_case(spec, fo, log);
   copy_results(r.gauge_dir, dir);
   RunInfo info;
+  info.header = "how the gauge files next to this one were produced (written by swell validate)";
+  info.provenance = {capture_provenance()};
   info.kind = "openfoam";
   info.resolution = cell;
   info.wall_seconds = r.wall_seconds;
@@ -583,13 +615,13 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
      << m.case_file << "`, manifest `" << m.file << "`.\n\n";
   if (!m.notes.empty()) md << m.notes << "\n\n";
   md << "## Runs\n\n| run | solver | resolution [m] | particles / cells | simulated [s] | "
-        "wall time | results | legend |\n|---|---|---|---|---|---|---|---|\n";
+        "wall time | results | legend | made by |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : runs) {
     const RunInfo& i = r.data.info;
     md << "| " << r.data.label << " | " << (i.kind == "openfoam" ? "interFoam" : "SPH") << " | "
        << format_number(i.resolution, 4) << " | " << i.size << " | " << format_number(i.end_time, 3)
        << " | " << seconds_text(i.wall_seconds) << " | " << r.source << " | "
-       << run_display_label(i, r.data.label) << " |\n";
+       << run_display_label(i, r.data.label) << " | " << made_by(i) << " |\n";
   }
   md << "\n";
   if (!m.targets.empty()) {
@@ -625,8 +657,11 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
     md << "## Notes\n\n";
     for (const auto& n : sum.notes) md << "- " << n << "\n";
   }
+  const Provenance prov = capture_provenance();
+  md << "\n" << provenance_section(prov);
   sum.report = (fs::path(out) / "report.md").string();
   write_text(sum.report, md.str());
+  write_output_info(out, "validate", prov);
   log << "validate " << m.name << ": " << runs.size() << " runs, " << rows.size()
       << " comparisons; targets: " << sum.targets_pass << " pass, " << sum.targets_fail << " fail ("
       << sum.targets_known_fail << " known), " << sum.targets_missing << " without result -> "

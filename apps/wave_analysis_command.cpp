@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
 #include "validation/wave_analysis.hpp"
 
@@ -274,7 +275,8 @@ void run_waves_analyse(const WavesAnalyseOptions& opt, std::ostream& out) {
 
   if (!opt.csv.empty()) {
     std::ostringstream csv;
-    csv << "# swell waves analyse " << opt.file << ": one-sided variance density spectra (Welch)\n";
+    csv << "# swell waves analyse " << opt.file << ": one-sided variance density spectra (Welch)\n"
+        << provenance_text(capture_provenance(), "# ");
     auto density_unit = [](const Record& r) {
       return " [" + (r.column.unit.empty() ? std::string("1") : r.column.unit + "^2") + "/Hz]";
     };

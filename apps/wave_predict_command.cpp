@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
 #include "validation/wave_analysis.hpp"
 #include "waves/record.hpp"
@@ -152,7 +153,8 @@ void run_waves_predict(const WavesPredictOptions& opt, std::ostream& out) {
     std::ostringstream csv;
     csv.precision(9);
     csv << "# swell waves predict: linear theory from " << opt.file << " column " << record.name
-        << ", depth " << opt.depth << " m\ntime [s]";
+        << ", depth " << opt.depth << " m\n"
+        << provenance_text(capture_provenance(), "# ") << "time [s]";
     for (std::size_t p = 0; p < at.size(); ++p) {
       csv << ",eta_" << at[p] << " [m]";
       if (!probes.empty()) csv << "," << probes[p] << " [m]";

@@ -76,12 +76,33 @@ void checkpoint_arrays(PS& ps, Fn&& fn) {
   });
 }
 
+// The units attribute of dataset `name` in `g` (a string, SI; "1" for counts, codes, text).
+void write_units(const Loc& g, const char* name, const std::string& units) {
+  Handle ds(H5Dopen2(g.id, name, H5P_DEFAULT), H5Dclose);
+  if (!ds.valid()) fail_h5(g.file, g.dataset(name), "cannot be opened to set its units");
+  write_strings(Loc{ds.get(), g.file, g.child(name)}, "units", {units}, true, false);
+}
+
+// Units of a snapshot dataset (by its name in the file) in a run of dimension `dim`: 2D
+// quantities are per metre of depth where they are extensive (mass).
+std::string snapshot_units(const std::string& name, int dim) {
+  if (name == "pos" || name == "normal") return "m";
+  if (name == "vel") return "m/s";
+  if (name == "rho") return "kg/m^3";
+  if (name == "p") return "Pa";
+  if (name == "mass") return dim == 2 ? "kg/m" : "kg";
+  return "1";  // type, body, id
+}
+
 void write_metadata(const Loc& root, const RunMetadata& m) {
+  for (const auto& [key, value] : m.provenance.fields())
+    write_field(root, ("provenance_" + key).c_str(), value);
   Handle g = create_group(root, "metadata");
   const Loc meta = root.at(g.get(), "metadata");
   metadata_fields(m, [&](const char* name, const auto& v) { write_field(meta, name, v); });
   // A dataset, not an attribute: case files can exceed the 64 KiB attribute limit.
   write_strings(meta, "case_text", {m.case_text}, true, true);
+  write_units(meta, "case_text", "1");
 }
 
 RunMetadata read_metadata_group(const Loc& root) {
@@ -89,6 +110,25 @@ RunMetadata read_metadata_group(const Loc& root) {
   const Loc meta = root.at(g.get(), "metadata");
   RunMetadata m;
   metadata_fields(m, [&](const char* name, auto& v) { read_field(meta, name, v); });
+  // Files written before provenance existed have none: the fields stay empty.
+  Provenance& p = m.provenance;
+  for (auto [key, to] : {std::pair<const char*, std::string*>{"version", &p.version},
+                         {"commit", &p.commit},
+                         {"compiler", &p.compiler},
+                         {"build", &p.build},
+                         {"command", &p.command},
+                         {"date", &p.date},
+                         {"host", &p.host},
+                         {"cpu", &p.cpu}}) {
+    const std::string name = std::string("provenance_") + key;
+    if (has_attr(root, name.c_str())) read_field(root, name.c_str(), *to);
+  }
+  for (auto [key, to] :
+       {std::pair<const char*, int*>{"threads", &p.threads}, {"ranks", &p.ranks}}) {
+    const std::string name = std::string("provenance_") + key;
+    if (has_attr(root, name.c_str()))
+      *to = std::stoi(read_strings(root, name.c_str(), false).at(0));
+  }
   const auto text = read_strings(meta, "case_text", true);
   if (text.size() != 1) fail(root.file, meta.dataset("case_text"), "is not a single string");
   m.case_text = text[0];
@@ -303,9 +343,12 @@ void Hdf5RunFile::write_snapshot(long step, double time, const ParticleSet<D>& p
         const Loc snap = particles.at(g.get(), name);
         // The fields of the table that have a snapshot name, plus the pressure.
         ps.for_each_field([&](const FieldInfo& f, const auto& a) {
-          if (f.snapshot && ps.enabled(f)) write_column(snap, f.snapshot, a, n, true);
+          if (!f.snapshot || !ps.enabled(f)) return;
+          write_column(snap, f.snapshot, a, n, true);
+          write_units(snap, f.snapshot, snapshot_units(f.snapshot, D));
         });
         write_column(snap, "p", pressure, n, true);
+        write_units(snap, "p", snapshot_units("p", D));
         // Attributes last: a group without them was cut short and is skipped by readers.
         write_attr(snap, "time", time);
         write_attr<std::int64_t>(snap, "step", step);

@@ -12,9 +12,14 @@
 // snapshot files, never from the previous index.
 //
 // Run file layout (readable with h5py or h5dump, strings are UTF-8):
+//   /                              attributes provenance_<field> for every Provenance field
+//                                  (version, commit, compiler, build, command, threads, ranks,
+//                                  date, host, cpu): the command that wrote this file
 //   /metadata                      group; attributes case_name, case_file, version, kernel,
 //                                  dim, dp, h, c0, rho0, n_fluid, n_boundary, body_names[]
 //   /metadata/case_text            scalar string dataset: the case file as read
+// Every dataset has a string attribute `units` (SI; "1" for counts, codes and text; in 2D
+// mass is per metre of depth, "kg/m").
 //   /particles/<step, 10 digits>   group; attributes time (double), step (int64), written last
 //       pos, vel (N x D double), rho, p, mass (N double), type (N uint8: the role, 0 fluid,
 //                                  1 fixed wall, 2 moving wall, 3 floating),
@@ -41,6 +46,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/provenance.hpp"
 #include "solver/state/particle_set.hpp"
 #include "solver/time/clock.hpp"
 #include "swell/version.hpp"
@@ -54,6 +60,9 @@ struct RunMetadata {
   std::string kernel;
   std::uint64_t n_fluid = 0, n_boundary = 0;
   std::vector<std::string> body_names;  // index = body id
+  // How the file was made (the command that wrote it): root attributes of the run file and of
+  // each snapshot file (provenance_version, provenance_commit, ...; see Provenance::fields).
+  Provenance provenance;
 };
 
 // The run file of a run being written: its metadata and the snapshots written so far. Each

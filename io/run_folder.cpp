@@ -23,7 +23,7 @@ bool ends_with_any(std::string_view s, std::initializer_list<std::string_view> t
 
 bool is_top_level_run_file(std::string_view f) {
   if (f == "diagnostics.csv" || f == "run_summary.txt" || f == "diagnostics.csv.tmp" ||
-      f == "run.log")
+      f == "run.log" || f == "run_info.yaml" || f == "run_info.yaml.tmp")
     return true;
   if (f.starts_with("gauges_") && ends_with_any(f, {".csv", ".csv.tmp"})) return true;
   return ends_with_any(f, {".h5", ".h5.tmp", ".h5.prev", ".h5.corrupt", ".pvd", ".pvd.tmp"});

@@ -27,6 +27,7 @@ class OutputLock {
 
 // The files in DIR that a `swell run` writes (relative names, sorted): checkpoint.h5*, run
 // files (*.h5) and their temporaries, *.pvd, gauges_*.csv, diagnostics.csv, run_summary.txt,
+// run_info.yaml,
 // vtk/*.vtp and snapshots/*.h5. Other files are not a run's and are never touched.
 std::vector<std::string> run_files(const std::string& dir);
 

@@ -2,6 +2,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkIdTypeArray.h>
 #include <vtkNew.h>
@@ -15,6 +16,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -47,7 +49,7 @@ void write_file_atomically(const std::string& path, const std::string& text) {
 template <int D>
 void write_vtp(const std::string& path, const ParticleSet<D>& ps,
                const std::vector<double>& pressure, ParticleFilter filter,
-               const std::vector<std::string>* body_names) {
+               const std::vector<std::string>* body_names, double time) {
   std::vector<std::size_t> sel;
   sel.reserve(ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i) {
@@ -136,6 +138,19 @@ void write_vtp(const std::string& path, const ParticleSet<D>& ps,
       names->SetValue(k, b < body_names->size() ? (*body_names)[b] : std::string());
     }
     poly->GetPointData()->AddArray(names);
+    vtkNew<vtkStringArray> all;
+    all->SetName("body_names");
+    all->SetNumberOfValues(static_cast<vtkIdType>(body_names->size()));
+    for (std::size_t b = 0; b < body_names->size(); ++b)
+      all->SetValue(static_cast<vtkIdType>(b), (*body_names)[b]);
+    poly->GetFieldData()->AddArray(all);
+  }
+  if (std::isfinite(time)) {
+    vtkNew<vtkDoubleArray> t;
+    t->SetName("TimeValue");
+    t->SetNumberOfTuples(1);
+    t->SetValue(0, time);
+    poly->GetFieldData()->AddArray(t);
   }
 
   const std::string tmp = path + ".tmp";
@@ -181,8 +196,8 @@ void PvdSeries::add(double time, const std::string& file) {
 }
 
 template void write_vtp<2>(const std::string&, const ParticleSet<2>&, const std::vector<double>&,
-                           ParticleFilter, const std::vector<std::string>*);
+                           ParticleFilter, const std::vector<std::string>*, double);
 template void write_vtp<3>(const std::string&, const ParticleSet<3>&, const std::vector<double>&,
-                           ParticleFilter, const std::vector<std::string>*);
+                           ParticleFilter, const std::vector<std::string>*, double);
 
 }  // namespace swell

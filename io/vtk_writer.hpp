@@ -2,6 +2,7 @@
 // ParaView opens with the simulated time attached to each snapshot.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,11 +17,14 @@ enum class ParticleFilter { All, Fluid, Boundary };
 // Writes the active particles (position, velocity, density, pressure, type, body, id) to
 // `path` as binary VTK XML PolyData, through a temporary file renamed into place. With
 // `body_names` (indexed by body), each point also gets its body's name (string array
-// `body_name`).
+// `body_name`) and the names are field data `body_names` (value b = the name of body b).
+// A finite `time` [s] is field data `TimeValue` (one double, which ParaView shows as the
+// dataset's time).
 template <int D>
 void write_vtp(const std::string& path, const ParticleSet<D>& ps,
                const std::vector<double>& pressure, ParticleFilter filter = ParticleFilter::All,
-               const std::vector<std::string>* body_names = nullptr);
+               const std::vector<std::string>* body_names = nullptr,
+               double time = std::numeric_limits<double>::quiet_NaN());
 
 // A .pvd collection, rewritten (atomically) each time a snapshot is added.
 class PvdSeries {

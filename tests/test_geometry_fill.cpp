@@ -605,5 +605,51 @@ TEST(FillCommand, CaseWithMeshAndFillBelowMatchesSetupAndWritesNames) {
   }
 }
 
+// `fill: below` with structures: the volume check compares the particles with the water the
+// tank really holds, region less structures (a 1:10 ramp and a box here, areas known exactly),
+// and the lattice's staircase along the ramp leaves a void of at most 1 dp over the structures'
+// wetted perimeter.
+TEST(FillCommand, FillBelowVolumeCheckCutsOutStructures) {
+  std::filesystem::create_directories(temp_dir());
+  for (const double dp : {0.01, 0.005}) {
+    std::ostringstream text;
+    text << "name: ramp\ndim: 2\ndp: " << dp << "\ntime: {end: 1}\nbodies:\n"
+         << "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [2, 0.5]}}, "
+            "open: [ymax]}\n"
+         << "  - {name: ramp, kind: boundary, walls: outside, shape: {polygon: {points: "
+            "[[0.5, 0], [2, 0], [2, 0.15]]}}}\n"
+         << "  - {name: block, kind: boundary, walls: outside, shape: {box: {min: [0.2, 0], "
+            "max: [0.3, 0.1]}}}\n"
+         << "  - {name: water, kind: fluid, fill: {below: 0.3, inside: tank}}\n";
+    const CaseSpec spec = parse_case_text(text.str(), (temp_dir() / "ramp.yaml").string());
+    std::ostringstream log;
+    FillCommandOptions opt;
+    opt.out_dir = (temp_dir() / "ramp_out").string();
+    const FillSummary sum = run_fill(spec, opt, log);
+    ASSERT_EQ(sum.volumes.size(), 1u);
+    const FluidVolumeCheck& v = sum.volumes[0];
+    const double ramp = 0.5 * 1.5 * 0.15, block = 0.1 * 0.1;
+    const double water = 2.0 * 0.3 - ramp - block;
+    // Wetted perimeter of the structures: the ramp's slope and the block's three faces.
+    const double perimeter = std::hypot(1.5, 0.15) + 0.3;
+    EXPECT_DOUBLE_EQ(v.region, 0.6);
+    EXPECT_NEAR(v.lattice, 0.6, 1e-12);  // the lattice before the cut: the old, wrong check
+    EXPECT_NEAR(v.structures, ramp + block, v.spacing * perimeter) << log.str();
+    EXPECT_NEAR(v.water(), water, v.spacing * perimeter);
+    EXPECT_DOUBLE_EQ(v.particles, static_cast<double>(sum.fluid) * dp * dp);
+    // The particles fill the water but for the staircase: a void, and under 1 dp x perimeter.
+    EXPECT_GT(v.void_volume(), 0.0);
+    EXPECT_LT(v.void_volume(), dp * perimeter) << log.str();
+    EXPECT_NE(log.str().find("water = region 0.6 m^2 - structures"), std::string::npos)
+        << log.str();
+    EXPECT_NE(log.str().find("void:"), std::string::npos) << log.str();
+    std::printf(
+        "[ measured ] dp %g: water %.6f m^2 (exact %.6f), particles %.6f m^2, void %.6f "
+        "m^2 = %.2f dp over the %.3f m wetted perimeter\n",
+        dp, v.water(), water, v.particles, v.void_volume(), v.void_volume() / (dp * perimeter),
+        perimeter);
+  }
+}
+
 }  // namespace
 }  // namespace swell::geometry

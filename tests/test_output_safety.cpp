@@ -159,8 +159,12 @@ TEST(OutputSafety, KillInsideSnapshotWriteLosesNoEarlierSnapshot) {
     fs::remove(csv);
     EXPECT_EQ(run_swell({"probe", out.string(), "--at", "0.02,0.01", "-o", csv.string()}, root).rc,
               0);
-    const std::string text = read_text(csv);
-    return text.substr(text.find('\n') + 1);  // without the comment naming the folder
+    // Without the comment lines (the folder's name, the provenance of the probe command).
+    std::istringstream in(read_text(csv));
+    std::string rows;
+    for (std::string line; std::getline(in, line);)
+      if (!line.starts_with("#")) rows += line + "\n";
+    return rows;
   };
   const std::string probe_full = probe(full);
   ASSERT_EQ(std::count(probe_full.begin(), probe_full.end(), '\n'), 9 + 1);  // + the header

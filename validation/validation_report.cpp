@@ -19,18 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (c == '\n') {
-      out += "\\n";
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
+  return quoted_string(s);
 }
 
 std::string json_number(double v) {
@@ -59,40 +48,6 @@ std::string find_plot_script() {
 }
 
 }  // namespace
-
-RunInfo read_run_info(const std::string& dir) {
-  RunInfo info;
-  const fs::path file = fs::path(dir) / "run_info.yaml";
-  if (!fs::exists(file)) return info;
-  try {
-    const YAML::Node n = YAML::LoadFile(file.string());
-    if (n["kind"]) info.kind = n["kind"].as<std::string>();
-    if (n["resolution"]) info.resolution = n["resolution"].as<double>();
-    if (n["wall_seconds"]) info.wall_seconds = n["wall_seconds"].as<double>();
-    if (n["size"]) info.size = n["size"].as<long>();
-    if (n["end_time"]) info.end_time = n["end_time"].as<double>();
-    if (n["date"]) info.date = n["date"].as<std::string>();
-    if (n["note"]) info.note = n["note"].as<std::string>();
-  } catch (const YAML::Exception& e) {
-    throw std::runtime_error(file.string() + ": " + e.what());
-  }
-  return info;
-}
-
-void write_run_info(const std::string& dir, const RunInfo& info) {
-  fs::create_directories(dir);
-  std::ofstream out(fs::path(dir) / "run_info.yaml");
-  out << "# how the gauge files next to this one were produced (written by swell validate)\n";
-  out << "kind: " << info.kind << "\n";
-  out << "resolution: " << json_number(info.resolution) << "   # dp or cell size [m]\n";
-  if (std::isfinite(info.wall_seconds))
-    out << "wall_seconds: " << format_number(info.wall_seconds, 4) << "\n";
-  out << "size: " << info.size << "   # particles (sph) or cells (openfoam)\n";
-  if (std::isfinite(info.end_time)) out << "end_time: " << json_number(info.end_time) << "\n";
-  if (!info.date.empty()) out << "date: \"" << info.date << "\"\n";
-  if (!info.note.empty()) out << "note: " << json_string(info.note) << "\n";
-  if (!out) throw std::runtime_error(dir + "/run_info.yaml: cannot write");
-}
 
 const Series* RunData::find(const std::string& gauge) const {
   for (const auto& s : gauges)

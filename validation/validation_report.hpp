@@ -9,22 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "io/run_info.hpp"  // RunInfo, read_run_info, write_run_info
 #include "validation/metrics.hpp"
 #include "validation/validation_manifest.hpp"
 
 namespace swell {
-
-// What is known about how a result was produced: run_info.yaml next to its gauge files.
-struct RunInfo {
-  std::string kind;       // sph | openfoam | "" (unknown)
-  double resolution = 0;  // dp or cell size [m]; 0: unknown
-  double wall_seconds = std::numeric_limits<double>::quiet_NaN();
-  long size = 0;  // particles (SPH) or cells (OpenFOAM)
-  double end_time = std::numeric_limits<double>::quiet_NaN();
-  std::string date, note;
-};
-RunInfo read_run_info(const std::string& dir);  // defaults when the file is absent
-void write_run_info(const std::string& dir, const RunInfo& info);
 
 // A run's gauges as read from its folder.
 struct RunData {
