@@ -223,6 +223,14 @@ void run_waves_analyse(const WavesAnalyseOptions& opt, std::ostream& out) {
       for (const auto& h : fit.harmonics)
         rep << "  n = " << h.n << ": f = " << fmt(h.frequency) << " Hz, a = " << fmt(h.amplitude)
             << u << ", phi = " << fmt(h.phase) << " rad\n";
+      if (!std::isnan(opt.depth) && fit.harmonics.size() >= 2) {
+        const auto sp =
+            wv::split_second_harmonic(fit.harmonics[0], fit.harmonics[1], opt.depth, opt.gravity);
+        rep << "  second harmonic in depth " << fmt(opt.depth)
+            << " m: bound (Stokes, from a1) = " << fmt(sp.bound) << u
+            << ", free (the rest) = " << fmt(sp.free) << u
+            << ", free / a1 = " << fmt(sp.free / fit.harmonics[0].amplitude) << "\n";
+      }
     }
     spectrum = wv::welch_spectrum(base.t, base.eta.front(), sopt);
     const auto p = wv::spectral_parameters(spectrum.f, spectrum.S, band);
@@ -334,7 +342,9 @@ WavesAnalyseCommand add_waves_analyse_command(CLI::App& waves) {
                              "three gauge columns G1,G2,G3 for the Mansard-Funke separation");
   auto* pos =
       a->add_option("--positions", opt->positions, "their positions x1,x2,x3 [m]")->needs(refl);
-  auto* depth = a->add_option("--depth", opt->depth, "water depth [m]")->needs(refl);
+  auto* depth = a->add_option("--depth", opt->depth,
+                              "water depth [m] (reflection; with --period: bound and free "
+                              "second harmonic)");
   refl->needs(pos)->needs(depth);
   a->add_option("--fmin", opt->fmin, "band start [Hz] (spectral parameters and reflection)");
   a->add_option("--fmax", opt->fmax, "band end [Hz]");

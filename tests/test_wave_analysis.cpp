@@ -17,6 +17,7 @@
 
 #include "validation/wave_analysis.hpp"
 #include "waves/dispersion.hpp"
+#include "waves/theory.hpp"
 
 namespace swell::waves {
 namespace {
@@ -190,6 +191,34 @@ TEST(Harmonics, StokesLikeSignalWithNoise) {
   // A harmonic at the Nyquist frequency of uniform samples cannot be fitted.
   const Record nyq = sample(0.0, 10.0, 0.25, clean);
   EXPECT_THROW(fit_harmonics(nyq.t, nyq.eta, 1.0, 2), std::invalid_argument);
+}
+
+// Stokes' second-order wave at a gauge has no free second harmonic; adding one of known
+// amplitude and phase is recovered exactly (noise-free samples, whole periods).
+TEST(Harmonics, SecondHarmonicSplitsIntoBoundAndFree) {
+  const double H = 0.05, T = 1.2, d = 0.4, x = 1.13, omega = 2.0 * kPi / T;
+  const double k = wave_number(omega, d);
+  const double bound = H / 2 * stokes2_harmonic_ratio(k, d, H);
+  const double F = 0.0011, psi = 0.9;
+  for (const double free : {0.0, F}) {
+    Record r = sample(0.0, 12.0, 0.01, [&](double t) {
+      return stokes2_elevation(H, T, d, x, t) + free * std::cos(2 * omega * t - psi);
+    });
+    const auto fit = fit_harmonics(r.t, r.eta, 1.0 / T, 3);
+    const auto sp = split_second_harmonic(fit.harmonics[0], fit.harmonics[1], d);
+    EXPECT_NEAR(fit.harmonics[0].amplitude, H / 2, 1e-12);
+    EXPECT_NEAR(sp.bound, bound, 1e-12);
+    EXPECT_NEAR(sp.free, free, 1e-12);
+    if (free > 0.0) EXPECT_NEAR(sp.free_phase, psi, 1e-9);
+  }
+  // The bound part is not simply the fitted second harmonic: a first harmonic shifted in time
+  // moves the bound part with it (phase 2 phi1), so a free part in antiphase is seen.
+  Record r = sample(0.0, 12.0, 0.01, [&](double t) {
+    return H / 2 * std::cos(omega * t - 0.5) + bound * std::cos(2 * omega * t - 1.0 - kPi);
+  });
+  const auto fit = fit_harmonics(r.t, r.eta, 1.0 / T, 2);
+  EXPECT_NEAR(split_second_harmonic(fit.harmonics[0], fit.harmonics[1], d).free, 2 * bound, 1e-12);
+  EXPECT_THROW(split_second_harmonic(fit.harmonics[1], fit.harmonics[0], d), std::invalid_argument);
 }
 
 // ---- Spectrum --------------------------------------------------------------------------------

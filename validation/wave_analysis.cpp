@@ -10,6 +10,9 @@
 #include <stdexcept>
 #include <unsupported/Eigen/FFT>
 
+#include "waves/dispersion.hpp"
+#include "waves/theory.hpp"
+
 namespace swell::waves {
 namespace {
 
@@ -539,6 +542,22 @@ GaugeColumn read_gauge_column(const std::string& path, const std::string& column
       throw std::invalid_argument(path + ": times must increase, but t = " + num(g.t[i]) +
                                   " follows t = " + num(g.t[i - 1]) + " (gauge '" + name + "')");
   return g;
+}
+
+SecondHarmonicSplit split_second_harmonic(const Harmonic& first, const Harmonic& second,
+                                          double depth, double g) {
+  if (first.n != 1 || second.n != 2)
+    throw std::invalid_argument("split_second_harmonic: expected harmonics 1 and 2");
+  if (!(depth > 0.0) || !(first.frequency > 0.0))
+    throw std::invalid_argument("split_second_harmonic: depth and frequency must be positive");
+  const double k = wave_number(2.0 * std::numbers::pi * first.frequency, depth, g);
+  SecondHarmonicSplit r;
+  r.bound = first.amplitude * stokes2_harmonic_ratio(k, depth, 2.0 * first.amplitude);
+  const std::complex<double> rest =
+      std::polar(second.amplitude, second.phase) - std::polar(r.bound, 2.0 * first.phase);
+  r.free = std::abs(rest);
+  r.free_phase = std::arg(rest);
+  return r;
 }
 
 }  // namespace swell::waves

@@ -79,6 +79,23 @@ struct HarmonicFit {
 HarmonicFit fit_harmonics(std::span<const double> t, std::span<const double> eta, double frequency,
                           int harmonics, Window w = {});
 
+// ---- Bound and free second harmonic --------------------------------------------------------
+
+// A fitted second harmonic split into the part Stokes' second-order theory binds to the fitted
+// first harmonic and the rest, the free second harmonic a paddle sheds (which travels at its
+// own, slower speed; Madsen 1971 second-order generation is meant to suppress it). With
+// eta = a1 cos(w t - phi1) + a2 cos(2 w t - phi2) at one point, the bound part is
+// a1 * r(k, d, 2 a1) cos(2 w t - 2 phi1) (it crests with the first harmonic; r =
+// waves::stokes2_harmonic_ratio, k from linear dispersion at w), and the free part is the
+// complex difference a2 e^{i phi2} - a1 r e^{i 2 phi1}.
+struct SecondHarmonicSplit {
+  double bound = 0.0;       // Stokes' bound second-harmonic amplitude for the fitted a1 [m]
+  double free = 0.0;        // amplitude of the remainder [m]
+  double free_phase = 0.0;  // its phase [rad], in (-pi, pi]
+};
+SecondHarmonicSplit split_second_harmonic(const Harmonic& first, const Harmonic& second,
+                                          double depth, double g = 9.81);
+
 // ---- Uniform sampling -----------------------------------------------------------------------
 
 inline constexpr double kUniformTolerance = 1e-6;
