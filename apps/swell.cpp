@@ -19,6 +19,7 @@
 #include "apps/probe_command.hpp"
 #include "apps/stop_signals.hpp"
 #include "apps/validate_command.hpp"
+#include "apps/verify_command.hpp"
 #include "apps/wave_analysis_command.hpp"
 #include "apps/wave_predict_command.hpp"
 #include "apps/waves_command.hpp"
@@ -153,6 +154,15 @@ int main(int argc, char** argv) {
 
   std::string foam_case;
   swell::FoamOptions foam_opt;
+  swell::VerifyOptions ver;
+  auto* verify = app.add_subcommand(
+      "verify", "the method checked piece by piece: consistency, convergence, conservation");
+  verify->add_option("names", ver.names, "verifications to run (default: all; --list)");
+  verify->add_option("-o,--out", ver.out_dir, "output folder (default: out/verify)");
+  verify->add_flag("--full", ver.full, "the full convergence studies (longer)");
+  verify->add_flag("--list", ver.list, "list the verifications and stop");
+  verify->add_option("-t,--threads", ver.threads, "OpenMP threads")->check(kCount);
+
   auto* foam = app.add_subcommand(
       "foam", "write an OpenFOAM interFoam case of a case file; --run runs it and converts gauges");
   foam->add_option("case", foam_case, "case file (YAML)")->required();
@@ -310,6 +320,8 @@ int main(int argc, char** argv) {
       if (!val_res.empty()) val.resolutions = swell::parse_number_list(val_res, "--resolution");
       if (!val_cells.empty()) val.cell_sizes = swell::parse_number_list(val_cells, "--cell-size");
       swell::run_validate(val, std::cerr);
+    } else if (*verify) {
+      return swell::run_verify(ver, std::cout);
     } else if (*bench) {
       if (!bench_single.case_file.empty()) return swell::run_bench_single(bench_single, std::cout);
       if (!bench_threads.empty()) {

@@ -31,14 +31,15 @@
 
 #include "solver/neighbours/cell_grid.hpp"
 #include "solver/neighbours/gather.hpp"
+#include "solver/physics/corrections.hpp"
 #include "solver/solver_params.hpp"
 #include "solver/state/particle_set.hpp"
 #include "solver/time/step_hooks.hpp"
 
 namespace swell {
 
-// How a ghost node's value was obtained.
-enum class GhostMode : std::uint8_t { Dry = 0, Shepard = 1, Corrected = 2 };
+// How a ghost node's value was obtained (the modes of the shared first-order system).
+using GhostMode = CorrectionMode;
 
 template <int D>
 struct GhostValue {
@@ -50,15 +51,14 @@ struct GhostValue {
 };
 
 // Interpolates density (and velocity) of the fluid at point xg (inside the domain, grid sorted
-// for the current positions). Kernel: a kernel value type of solver/physics/kernels.hpp.
+// for the current positions) with the first-order system of solver/physics/corrections.hpp.
+// Kernel: a kernel value type of solver/physics/kernels.hpp.
 template <int D, class Kernel>
 GhostValue<D> ghost_interpolate(const ParticleSet<D>& ps, const CellGrid<D>& grid,
                                 const Kernel& kernel, const Vec<D>& xg, double det_min,
                                 bool with_velocity) {
-  using Mat = Eigen::Matrix<double, D + 1, D + 1>;
-  using Rhs = Eigen::Matrix<double, D + 1, D + 1>;  // column 0: density; 1..D: velocity
-  Mat A = Mat::Zero();
-  Rhs B = Rhs::Zero();
+  FirstOrderSystem<D, D + 1> sys;  // column 0: density; 1..D: velocity
+  auto& B = sys.B;
   const double s2 = kernel.support() * kernel.support();
   grid.for_each_candidate_near(xg, [&](std::uint32_t b) {
     if (ps.role[b] != Role::Fluid) return;
@@ -69,10 +69,8 @@ GhostValue<D> ghost_interpolate(const ParticleSet<D>& ps, const CellGrid<D>& gri
     const double w = kernel.w(dist);
     const Vec<D> gw = r * kernel.f(dist);  // grad_g W(x_g - x_b)
     const double m = ps.mass[b], V = m / ps.rho[b];
-    A(0, 0) += w * V;
-    A.template block<1, D>(0, 1) -= (w * V) * r.transpose();  // (x_b - x_g) W V
-    A.template block<D, 1>(1, 0) += V * gw;
-    A.template block<D, D>(1, 1) -= V * gw * r.transpose();  // gradW (x_b - x_g)^T V
+    sys.add_moments(V, w, gw, r);
+    // V_b rho_b = m_b: the density sums are taken with the mass itself.
     B(0, 0) += m * w;
     B.template block<D, 1>(1, 0) += m * gw;
     if (with_velocity) {
@@ -81,19 +79,16 @@ GhostValue<D> ghost_interpolate(const ParticleSet<D>& ps, const CellGrid<D>& gri
     }
   });
   GhostValue<D> out;
-  if (!(A(0, 0) > 0.0)) return out;  // no fluid in reach
-  out.det = A.determinant();
-  if (std::abs(out.det) >= det_min) {
-    const Rhs X = A.inverse() * B;
-    out.rho = X(0, 0);
-    out.grad = X.template block<D, 1>(1, 0);
-    if (with_velocity) out.vel = X.template block<1, D>(0, 1).transpose();
-    out.mode = GhostMode::Corrected;
-  } else {
-    out.rho = B(0, 0) / A(0, 0);
-    if (with_velocity) out.vel = B.template block<1, D>(0, 1).transpose() / A(0, 0);
-    out.mode = GhostMode::Shepard;
+  const auto s = sys.solve(det_min);
+  out.det = s.det;
+  out.mode = s.mode;
+  if (s.mode == GhostMode::Dry) {
+    out.det = 0.0;
+    return out;
   }
+  out.rho = s.X(0, 0);
+  if (s.mode == GhostMode::Corrected) out.grad = s.X.template block<D, 1>(1, 0);
+  if (with_velocity) out.vel = s.X.template block<1, D>(0, 1).transpose();
   return out;
 }
 

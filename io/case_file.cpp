@@ -218,6 +218,7 @@ class CaseReader : private NodeReader {
   void read_diffusion(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_boundary(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_shifting(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
+  void read_corrections(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_density_bounds(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_time(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
   void read_domain(const YAML::Node& node, const std::string& path, CaseSpec& spec) const;
@@ -319,6 +320,33 @@ void CaseReader::read_physics(const YAML::Node& node, const std::string& path,
   }
   if (auto v = find(node, "boundary")) read_boundary(*v, child(path, "boundary"), spec);
   if (auto v = find(node, "shifting")) read_shifting(*v, child(path, "shifting"), spec);
+  if (auto v = find(node, "corrections")) read_corrections(*v, child(path, "corrections"), spec);
+  if (spec.kernel_gradient_correction && spec.viscosity_model == ViscosityModel::Laminar) {
+    const YAML::Node c = *find(node, "corrections");
+    expect(false, c, child(path, "corrections"),
+           "kernel_gradient: none with laminar viscosity (the corrected gradient applies to the "
+           "pressure and artificial-viscosity sum only)");
+  }
+}
+
+// `corrections: {kernel_gradient: none|kgc, det_min: 0.1, shepard_reinit: 0}`.
+void CaseReader::read_corrections(const YAML::Node& node, const std::string& path,
+                                  CaseSpec& spec) const {
+  expect_map(node, path, case_schema::all_keys("physics.corrections"));
+  if (auto v = find(node, "kernel_gradient")) {
+    spec.kernel_gradient_correction =
+        choice(*v, child(path, "kernel_gradient"), {"none", "kgc"}) == "kgc";
+  }
+  if (auto v = find(node, "det_min")) {
+    spec.kgc_det_min = number_if(
+        *v, child(path, "det_min"), [](double d) { return d > 0.0 && d < 1.0; },
+        "a number in (0, 1)");
+  }
+  if (auto v = find(node, "shepard_reinit")) {
+    spec.shepard_reinit = integer(*v, child(path, "shepard_reinit"));
+    expect(spec.shepard_reinit >= 0, *v, child(path, "shepard_reinit"),
+           "an integer >= 0 (steps; 0: never)");
+  }
 }
 
 // `shifting: {model: none}` or `{model: fickian, coefficient: 2, surface_threshold: 1.5}`.

@@ -32,6 +32,9 @@ const std::vector<Section>& section_table() {
        "across the wall)."},
       {"physics.shifting", "model", "none fickian", "",
        "Particle shifting after each step (Fickian, Lind et al. 2012 / Skillen et al. 2013)."},
+      {"physics.corrections", "", "", "",
+       "Kernel corrections of the SPH course, off by default: the corrected kernel gradient in "
+       "the momentum equation (Bonet & Lok 1999) and a Shepard density re-initialisation."},
       {"time", "", "", "", "The run's end and the time integration."},
       {"time.settling", "", "", "",
        "A settling phase: every fluid velocity relaxed by exp(-sigma dt), sigma = rate (1 + cos(pi "
@@ -111,6 +114,7 @@ const std::vector<Key>& key_table() {
      "fluid particles whose density leaves [min, max] rho0 are deleted (counted)"},
     {"physics", "boundary", "", "map", "{model: dbc}", "", "", "physics.boundary.*"},
     {"physics", "shifting", "", "map", "{model: none}", "", "", "physics.shifting.*"},
+    {"physics", "corrections", "", "map", "all off", "", "", "physics.corrections.*"},
 
     {"physics.viscosity", "model", "", "choice", "artificial", "", "artificial | laminar",
      "artificial: Monaghan (1992); laminar: Lo & Shao"},
@@ -130,6 +134,14 @@ const std::vector<Key>& key_table() {
     {"physics.boundary", "det_min", "mdbc", "number", "1e-3", "", "(0, 1)",
      "below this determinant of the ghost's correction matrix: Shepard average instead"},
 
+    {"physics.corrections", "kernel_gradient", "", "choice", "none", "", "none | kgc",
+     "kgc: dv/dt = L_a (pressure + artificial-viscosity sum) + g, L_a the kernel-gradient "
+     "correction matrix; artificial viscosity only"},
+    {"physics.corrections", "det_min", "", "number", "0.1", "", "(0, 1)",
+     "kgc: below this determinant of the moment matrix, no correction (isolated particles)"},
+    {"physics.corrections", "shepard_reinit", "", "integer", "0", "steps", ">= 0",
+     "every this many steps the fluid density is re-initialised by Shepard interpolation "
+     "(0: never)"},
     {"physics.shifting", "model", "", "choice", "none", "", "none | fickian", "shifting model"},
     {"physics.shifting", "coefficient", "fickian", "number", "2", "", "(0, 10]",
      "A in dr = -A h |v| dt grad C"},

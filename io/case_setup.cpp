@@ -20,6 +20,7 @@
 #include "geometry/wall_normals.hpp"
 #include "io/case_file.hpp"
 #include "io/case_geometry.hpp"
+#include "solver/time/correction_hooks.hpp"
 #include "solver/time/shifting_hook.hpp"
 
 namespace swell {
@@ -149,6 +150,9 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   p.mdbc_slip = spec.mdbc_slip;
   p.mdbc_det_min = spec.mdbc_det_min;
   p.shifting = spec.shifting;
+  p.kernel_gradient_correction = spec.kernel_gradient_correction;
+  p.kgc_det_min = spec.kgc_det_min;
+  p.shepard_reinit = spec.shepard_reinit;
   p.shift_coefficient = spec.shift_coefficient;
   p.shift_surface_threshold = spec.shift_surface_threshold;
   p.dt_collapse_factor = spec.dt_collapse;
@@ -458,6 +462,12 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
   typename Simulation<D>::Hooks hooks;
   if (MovingBodies<D>::any_moves(setup.motions))
     hooks.push_back(std::make_unique<MovingBodies<D>>(setup.motions));
+  // The corrections first: the Shepard densities before the boundary model's ghost nodes read
+  // them, the corrected gradient before any after_forces hook reads the accelerations.
+  if (setup.params.shepard_reinit > 0)
+    hooks.push_back(std::make_unique<ShepardReinit<D>>(setup.params.shepard_reinit));
+  if (setup.params.kernel_gradient_correction)
+    hooks.push_back(std::make_unique<KernelGradientCorrection<D>>(setup.params.kgc_det_min));
   if (setup.params.shifting == ShiftingModel::Fickian) {
     ShiftingParams sp;
     sp.coefficient = setup.params.shift_coefficient;

@@ -137,6 +137,10 @@ struct CaseSpec {
   // Particle shifting: none | fickian, its coefficient A and free-surface threshold on div r
   // (0: the default for the dimension).
   ShiftingModel shifting = ShiftingModel::None;
+  // physics.corrections
+  bool kernel_gradient_correction = false;
+  double kgc_det_min = 0.1;
+  int shepard_reinit = 0;
   double shift_coefficient = 2.0;
   double shift_surface_threshold = 0.0;
 

@@ -49,6 +49,10 @@ struct SolverParams {
   ShiftingModel shifting = ShiftingModel::None;
   double shift_coefficient = 2.0;        // A in dr = -A h |v| dt grad C
   double shift_surface_threshold = 0.0;  // div r below it: free surface (0: 1.5 in 2D, 2.75 in 3D)
+  // Corrections (solver/time/correction_hooks.hpp), off by default.
+  bool kernel_gradient_correction = false;
+  double kgc_det_min = 0.1;  // below it the moment matrix counts as singular: no correction
+  int shepard_reinit = 0;    // steps between Shepard density re-initialisations (0: never)
   Eigen::Vector3d domain_min = Eigen::Vector3d::Zero(), domain_max = Eigen::Vector3d::Zero();
 
   double eta2() const { return 0.01 * h * h; }

@@ -133,6 +133,7 @@ std::vector<Base> bases() {
     b.push_back({"physics.boundary", m, {{"model", m}}, physics("boundary"), "physics.boundary"});
   for (const char* m : {"none", "fickian"})
     b.push_back({"physics.shifting", m, {{"model", m}}, physics("shifting"), "physics.shifting"});
+  b.push_back({"physics.corrections", "", {}, physics("corrections"), "physics.corrections"});
   b.push_back({"time",
                "",
                {{"end", "0.001"}},
@@ -517,6 +518,8 @@ TEST(CaseSchema, DefaultsAreTheReadersDefaults) {
       {"physics.density_diffusion.delta", plain.delta},
       {"physics.boundary.det_min", tuned.mdbc_det_min},
       {"physics.shifting.coefficient", tuned.shift_coefficient},
+      {"physics.corrections.det_min", plain.kgc_det_min},
+      {"physics.corrections.shepard_reinit", plain.shepard_reinit},
       {"time.cfl", plain.cfl},
       {"time.verlet_steps", plain.verlet_steps},
       {"time.settling.rate", tuned.settling->rate},
@@ -546,6 +549,7 @@ TEST(CaseSchema, DefaultsAreTheReadersDefaults) {
       {"physics.boundary.model", swell::boundary_name(plain.boundary)},
       {"physics.boundary.slip", swell::mdbc_slip_name(tuned.mdbc_slip)},
       {"physics.shifting.model", swell::shifting_name(plain.shifting)},
+      {"physics.corrections.kernel_gradient", plain.kernel_gradient_correction ? "kgc" : "none"},
       {"time.integrator", swell::integrator_name(plain.integrator)},
       {"bodies[].walls",
        plain.bodies[0].walls == swell::BodySpec::Walls::Inside ? "inside" : "outside"},

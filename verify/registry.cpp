@@ -1,11 +1,18 @@
 // The list of verifications `swell verify` knows, in report order. A verification is added
 // here with one line: {name, title, function} (declared in its own verify/*.hpp).
+#include "verify/operators.hpp"
 #include "verify/verify.hpp"
 
 namespace swell::verify {
 
 const std::vector<Verification>& all() {
-  static const std::vector<Verification> list = {};
+  static const std::vector<Verification> list = {
+      {"consistency", "linear fields: corrected operators exact, uncorrected not", run_consistency},
+      {"gradient_convergence", "SPH gradient: smoothing and discretisation errors",
+       run_gradient_convergence},
+      {"laplacian", "Morris Laplacian: smoothing and discretisation errors", run_laplacian},
+      {"kernels", "second-order interpolation of every kernel", run_kernels},
+  };
   return list;
 }
 
