@@ -27,11 +27,11 @@ const ToroTest kToro[] = {
     {{5.99924, 19.5975, 460.894}, {5.99242, -6.19633, 46.0950}, 1691.64, 8.68975, 14.2823, 31.0426},
 };
 
-// Half a unit in the fifth significant figure of the printed value (and 5e-6 absolute for the
-// values printed as 0.00000 or with fewer digits).
+// Half a unit of the last printed digit: Toro prints values below 1 with 5 decimals and the
+// others with 6 significant figures (1.0001: the printed values are themselves rounded).
 double half_unit(double v) {
-  if (std::abs(v) < 1e-3) return 5e-6;
-  const double digits = std::floor(std::log10(std::abs(v))) - 4.0;
+  if (std::abs(v) < 1.0) return 5e-6 * 1.0001;
+  const double digits = std::floor(std::log10(std::abs(v))) - 5.0;
   return 0.5 * std::pow(10.0, digits) * 1.0001;
 }
 
