@@ -12,7 +12,6 @@
 
 namespace swell::compressible {
 namespace {
-
 struct ToroTest {
   GasState left, right;
   double p, u, rho_l, rho_r;  // Toro Table 4.3
@@ -52,10 +51,14 @@ TEST(Riemann, ToroTable43) {
   for (const auto& t : kToro) {
     const RiemannSolver rs(t.left, t.right, 1.4);
     const auto& s = rs.star();
-    EXPECT_NEAR(s.p, t.p, half_unit(t.p)) << "test " << n;
-    EXPECT_NEAR(s.u, t.u, half_unit(t.u)) << "test " << n;
-    EXPECT_NEAR(s.rho_left, t.rho_l, half_unit(t.rho_l)) << "test " << n;
-    EXPECT_NEAR(s.rho_right, t.rho_r, half_unit(t.rho_r)) << "test " << n;
+    // Test 5's data are Tests 3 and 4's star states rounded to 6 figures; that rounding
+    // (~1e-6 relative) moves its star values by up to ~4e-6 relative (measured), so test 5
+    // gets 1e-5 relative instead of half a printed unit.
+    auto tol = [&](double v) { return n == 5 ? 1e-5 * std::abs(v) : half_unit(v); };
+    EXPECT_NEAR(s.p, t.p, tol(t.p)) << "test " << n;
+    EXPECT_NEAR(s.u, t.u, tol(t.u)) << "test " << n;
+    EXPECT_NEAR(s.rho_left, t.rho_l, tol(t.rho_l)) << "test " << n;
+    EXPECT_NEAR(s.rho_right, t.rho_r, tol(t.rho_r)) << "test " << n;
     ++n;
   }
 }
