@@ -210,5 +210,29 @@ TEST(KernelNames, UnknownNameThrows) {
   }
 }
 
+// (f) dW/dh (the grad-h term of the compressible path) against a central difference of the
+// kernel built at h +- delta, at fixed r: the kernels that carry dwdh (Wendland C2, cubic).
+template <class K>
+class KernelDhTest : public ::testing::Test {};
+using DhKernels = ::testing::Types<WendlandC2<1>, WendlandC2<2>, WendlandC2<3>, CubicSpline<1>,
+                                   CubicSpline<2>, CubicSpline<3>>;
+TYPED_TEST_SUITE(KernelDhTest, DhKernels, KernelName);
+
+TYPED_TEST(KernelDhTest, DwDhMatchesFiniteDifference) {
+  const double h = 0.7, delta = 1e-6 * h;
+  const TypeParam k(h), kp(h + delta), km(h - delta);
+  for (int s = 0; s <= 400; ++s) {
+    const double r = h * (1.98 * s / 400);  // q in [0, 1.98]: r +- 0 stays inside both supports
+    const double fd = (kp.w(r) - km.w(r)) / (2.0 * delta);
+    // Truncation ~ delta^2 d3W/dh3 ~ 1e-12 W/h^3; the absolute floor 1e-7 * W(0)/h covers the
+    // round-off eps W / delta ~ 2e-10 W and the zero crossing of dW/dh inside the support.
+    EXPECT_NEAR(k.dwdh(r), fd, 1e-7 * k.w(0.0) / h) << "q=" << r / h;
+  }
+  // At r = 0, W = a_D(h) W(0)/a_D, so dW/dh = -D W(0)/h exactly.
+  constexpr int D = DimOf<TypeParam>::value;
+  EXPECT_NEAR(k.dwdh(0.0), -D * k.w(0.0) / h, 1e-14 * k.w(0.0) / h);
+  EXPECT_EQ(k.dwdh(TypeParam::kSupport * h), 0.0);
+}
+
 }  // namespace
 }  // namespace swell

@@ -51,6 +51,9 @@ struct WendlandC2 {
     const double t = 1.0 - 0.5 * r * inv_h;
     return -5.0 * a * t * t * t * inv_h * inv_h;
   }
+  // dW/dh at fixed r (the grad-h term of variable-h SPH). W = h^-D g(r/h) gives
+  // dW/dh = -(D W + q dW/dq) / h = -(D w(r) + r^2 f(r)) / h.
+  double dwdh(double r) const { return -(D * w(r) + r * r * f(r)) * inv_h; }
 };
 
 // Cubic B-spline (Monaghan & Lattanzio 1985), support 2h.
@@ -90,6 +93,8 @@ struct CubicSpline {
     const double inner = -3.0 + 2.25 * q, outer = -0.75 * t * t / q;
     return a * (q < 1.0 ? inner : outer) * inv_h * inv_h;
   }
+  // dW/dh at fixed r, as WendlandC2::dwdh (the grad-h term; Price 2012, JCP 231:759, eq. 31).
+  double dwdh(double r) const { return -(D * w(r) + r * r * f(r)) * inv_h; }
 };
 
 // Quintic spline (Morris, Fox & Zhu 1997), support 3h.

@@ -1,0 +1,20 @@
+// `swell verify sod`: the Sod shock tube with the compressible path (solver/compressible)
+// against the exact Riemann solution (Toro 2009 Test 1).
+#pragma once
+
+#include <memory>
+
+#include "solver/compressible/gas_solver.hpp"
+#include "verify/verify.hpp"
+
+namespace swell::verify {
+
+// The Sod tube on [-0.5, 0.5] (mirror walls at both ends), rho, p = 1, 1 | 0.125, 0.1,
+// gamma = 1.4, equal-mass particles: n_left in the left half, n_left/8 in the right.
+std::unique_ptr<compressible::GasSolver<1>> make_sod_1d(int n_left);
+// Runs to t_end with the CFL step (dt_fixed <= 0) or a fixed step; returns the step count.
+int run_gas(compressible::GasSolver<1>& gas, double t_end, double dt_fixed);
+
+Result run_sod(const Options& opt);
+
+}  // namespace swell::verify
