@@ -7,6 +7,7 @@
 #include "solver/physics/corrections.hpp"
 #include "solver/physics/kernels.hpp"
 #include "solver/time/correction_hooks.hpp"
+#include "verify/angular_momentum.hpp"
 #include "verify/cloud.hpp"
 #include "verify/operators.hpp"
 
@@ -104,5 +105,13 @@ TEST(CorrectionHooks, KgcMakesALinearPressureGradientExact) {
   EXPECT_GT(worst_plain, 1e-2);
 }
 
+}  // namespace
+}  // namespace swell
+
+namespace swell {
+namespace {
+TEST(VerifyOperators, AngularMomentum) {
+  expect_passes(verify::run_angular_momentum({}));
+}
 }  // namespace
 }  // namespace swell

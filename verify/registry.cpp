@@ -1,5 +1,6 @@
 // The list of verifications `swell verify` knows, in report order. A verification is added
 // here with one line: {name, title, function} (declared in its own verify/*.hpp).
+#include "verify/angular_momentum.hpp"
 #include "verify/energy.hpp"
 #include "verify/operators.hpp"
 #include "verify/sod.hpp"
@@ -14,6 +15,8 @@ const std::vector<Verification>& all() {
        run_gradient_convergence},
       {"laplacian", "Morris Laplacian: smoothing and discretisation errors", run_laplacian},
       {"kernels", "second-order interpolation of every kernel", run_kernels},
+      {"angular_momentum", "a rotating free disc: linear and angular momentum",
+       run_angular_momentum},
       {"sod", "Sod shock tube: compressible SPH against the exact Riemann solution", run_sod},
       {"energy", "Total energy conservation of the compressible path against dt", run_energy},
   };
