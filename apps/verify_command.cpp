@@ -48,6 +48,9 @@ std::string bound_text(const verify::Figure& f) {
 }
 
 void write_table(const fs::path& dir, const verify::Table& t) {
+  for (const auto& c : t.columns)  // the header is split at commas (plot_verify.py, users)
+    if (c.find(',') != std::string::npos)
+      throw std::logic_error("verify: table " + t.file + ": column name '" + c + "' holds a comma");
   std::ofstream out(dir / (t.file + ".csv"));
   for (std::size_t c = 0; c < t.columns.size(); ++c) out << (c ? "," : "") << t.columns[c];
   out << "\n" << std::setprecision(12);

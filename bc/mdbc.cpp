@@ -11,7 +11,7 @@ namespace swell {
 template <int D>
 void MdbcBoundary<D>::before_forces(StepState<D>& s) {
   ParticleSet<D>& ps = s.particles;
-  if (ps.normal.size() != ps.total())
+  if (ps.normal.size() != ps.stored())
     throw std::invalid_argument(
         "mDBC: the particles carry no wall normals (from a checkpoint written by a run with DBC "
         "walls? restart with the case the run was started with)");

@@ -461,6 +461,10 @@ void CaseReader::read_time(const YAML::Node& node, const std::string& path, Case
     spec.cfl = number_if(
         *v, child(path, "cfl"), [](double c) { return c > 0.0 && c <= 1.0; }, "a number in (0, 1]");
   }
+  if (auto v = find(node, "dt_fixed")) {
+    spec.dt_fixed = number_if(
+        *v, child(path, "dt_fixed"), [](double d) { return d > 0.0; }, "a number > 0");
+  }
   if (auto v = find(node, "integrator")) {
     spec.integrator = model(*v, child(path, "integrator"), kIntegratorTypes, integrator_name);
   }
@@ -482,6 +486,22 @@ void CaseReader::read_domain(const YAML::Node& node, const std::string& path,
   check_ordered(min, max, min_node, max_node, path);
   spec.domain_min = min;
   spec.domain_max = max;
+  if (auto v = find(node, "periodic")) {
+    const std::string ppath = child(path, "periodic");
+    const Names axes = dim_ == 2 ? Names{"x", "y"} : Names{"x", "y", "z"};
+    expect(v->IsSequence(), *v, ppath, "a list of axes (" + join(axes) + ")");
+    for (std::size_t i = 0; i < v->size(); ++i) {
+      const YAML::Node a = (*v)[i];
+      const std::string apath = item(ppath, i);
+      const std::string axis = text(a, apath);
+      if (dim_ == 2 && axis == "z")
+        fail(a, apath + ": axis 'z' does not exist in a 2D case; expected one of: " + join(axes));
+      choice(a, apath, axes);
+      const auto d = static_cast<std::size_t>(axis[0] - 'x');
+      if (spec.periodic[d]) fail(a, apath + ": axis '" + axis + "' is listed twice");
+      spec.periodic[d] = true;
+    }
+  }
 }
 
 void CaseReader::read_output(const YAML::Node& node, const std::string& path,

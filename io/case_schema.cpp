@@ -152,6 +152,9 @@ const std::vector<Key>& key_table() {
     {"time", "end", "", "number", "required", "s", "> 0", "end time of the run"},
     {"time", "cfl", "", "number", "0.2", "", "(0, 1]",
      "dt = cfl min(dt_f, dt_cv[, dt_nu]) (run header prints the terms)"},
+    {"time", "dt_fixed", "", "number", "none: the CFL step", "s", "> 0",
+     "a fixed time step instead of the CFL choice (DualSPHysics' DtFixed); above the CFL step "
+     "a run may go unstable (watchdog, exit 3)"},
     {"time", "integrator", "", "choice", "symplectic", "", "symplectic | verlet",
      "time integration (symplectic: two force evaluations per step)"},
     {"time", "verlet_steps", "", "integer", "40", "steps", ">= 1",
@@ -163,6 +166,9 @@ const std::vector<Key>& key_table() {
     // --- domain ---
     {"domain", "min", "", "vector", "required", "m", "", "lower corner"},
     {"domain", "max", "", "vector", "required", "m", "> min on every axis", "upper corner"},
+    {"domain", "periodic", "", "list of axes", "none", "", "x y (z in 3D)",
+     "periodic axes: the domain's extent on each is the period (at least two kernel supports); "
+     "particles leaving through one face enter through the other and interact across it"},
 
     // --- output ---
     {"output", "every", "", "number", "0: only the initial and final states", "s", ">= 0",

@@ -144,6 +144,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   p.integrator = spec.integrator;
   p.verlet_steps = spec.verlet_steps;
   p.cfl = spec.cfl;
+  p.fixed_dt = spec.dt_fixed;
   p.rho_min_factor = spec.rho_min_factor;
   p.rho_max_factor = spec.rho_max_factor;
   p.boundary = spec.boundary;
@@ -310,6 +311,16 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   // The neighbour grid: cells of the kernel support over the domain, padded by one per side.
   {
     const double support = kernel_support_factor(p.kernel) * p.h;
+    for (int d = 0; d < D; ++d) {
+      p.periodic[static_cast<std::size_t>(d)] = spec.periodic[static_cast<std::size_t>(d)];
+      if (!spec.periodic[static_cast<std::size_t>(d)] || dmax[d] - dmin[d] >= 2.0 * support)
+        continue;
+      std::ostringstream m;
+      m << "domain.periodic: the domain's extent along "
+        << "xyz"[d] << " (" << dmax[d] - dmin[d]
+        << " m) is the period and must be at least two kernel supports (" << 2.0 * support << " m)";
+      throw CaseError(spec.file, 0, m.str());
+    }
     double cells = 1.0;
     for (int d = 0; d < D; ++d) cells *= std::floor((dmax[d] - dmin[d]) / support) + 3.0;
     const double avail = available_memory_bytes();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -147,6 +148,7 @@ struct CaseSpec {
   // time
   double t_end = 0.0;
   double cfl = 0.2;
+  double dt_fixed = 0.0;                                   // time.dt_fixed [s]; 0: the CFL step
   IntegratorType integrator = IntegratorType::Symplectic;  // symplectic | verlet
   int verlet_steps = 40;
   // time.settling: velocities relaxed over [0, duration) (bc/damping.hpp); none by default.
@@ -154,6 +156,8 @@ struct CaseSpec {
 
   // domain: particles leaving it are excluded. Default: boundary bounding box + margin.
   std::optional<Eigen::Vector3d> domain_min, domain_max;
+  // domain.periodic: the periodic axes (x, y, z); none by default.
+  std::array<bool, 3> periodic{false, false, false};
 
   std::vector<BodySpec> bodies;
   std::vector<GaugeSpec> gauges;

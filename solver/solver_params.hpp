@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 
 #include "solver/physics/kernels.hpp"
 
@@ -36,6 +37,9 @@ struct SolverParams {
   IntegratorType integrator = IntegratorType::Symplectic;
   int verlet_steps = 40;  // Verlet: one Euler step every verlet_steps steps
   double cfl = 0.2;
+  // A fixed time step [s] instead of the CFL choice (0: variable, the default; case key
+  // time.dt_fixed; the temporal convergence study, verify/flows.cpp, uses it).
+  double fixed_dt = 0.0;
   // Fluid particles whose density leaves [rho_min, rho_max] * rho0 are excluded (as
   // DualSPHysics' RhopOut); boundary density never drops below rho0 (DBC).
   double rho_min_factor = 0.7, rho_max_factor = 1.3;
@@ -54,6 +58,8 @@ struct SolverParams {
   double kgc_det_min = 0.1;  // below it the moment matrix counts as singular: no correction
   int shepard_reinit = 0;    // steps between Shepard density re-initialisations (0: never)
   Eigen::Vector3d domain_min = Eigen::Vector3d::Zero(), domain_max = Eigen::Vector3d::Zero();
+  // Periodic axes (solver/neighbours/cell_grid.hpp): the domain's extent is the period.
+  std::array<bool, 3> periodic{false, false, false};
 
   double eta2() const { return 0.01 * h * h; }
   double tait_b() const { return c0 * c0 * rho0 / gamma; }

@@ -322,7 +322,7 @@ physics:
 dp: 0.01
 time: {end: 1, dt: 0.001}
 )",
-                              3, {"time.dt", "end, cfl, integrator, verlet_steps"}));
+                              3, {"time.dt", "end, cfl, dt_fixed, integrator, verlet_steps"}));
   EXPECT_TRUE(
       ThrowsCaseError(R"(dim: 2
 dp: 0.01

@@ -200,6 +200,10 @@ Plan make_plan(const CaseSpec& spec, const FoamOptions& opt) {
       tank_index = i;
     }
   }
+  if (spec.periodic[0] || spec.periodic[1] || spec.periodic[2])
+    throw std::invalid_argument(spec.file +
+                                ": domain.periodic: swell foam does not write periodic (cyclic) "
+                                "patches; remove domain.periodic for the OpenFOAM case");
   if (!tank)
     throw std::invalid_argument(spec.file +
                                 ": swell foam needs a box tank (a boundary body with "

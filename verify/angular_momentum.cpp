@@ -87,7 +87,7 @@ Result run_angular_momentum(const Options& opt) {
   r.figures.push_back(report("kernel gradient correction: angular momentum drift", kgc.angular));
   r.tables.push_back(
       {"momentum_drift",
-       {"case (0 artificial, 1 laminar, 2 kgc)", "linear drift", "angular drift"},
+       {"case (0 artificial; 1 laminar; 2 kgc)", "linear drift", "angular drift"},
        {{0, av.linear, av.angular}, {1, lam.linear, lam.angular}, {2, kgc.linear, kgc.angular}}});
   r.notes = "A free 2D disc (R = 0.1 m, dp = " + std::to_string(dp) +
             " m) in solid-body rotation at 1 rad/s, no gravity and no walls, " +

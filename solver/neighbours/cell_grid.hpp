@@ -5,8 +5,20 @@
 // of one cell - and of three x-adjacent cells - are contiguous: a particle's neighbours are
 // 3^(D-1) contiguous index ranges. Particles outside the domain or with non-finite state are
 // moved past the active range (excluded) during the sort.
+//
+// Periodic axes (set_periodic): the domain's extent on such an axis is the period L. The sort
+// wraps particles that crossed a periodic face back into [min, max) and then appends periodic
+// images - copies of the particles within one cell (one kernel support) of a periodic face,
+// shifted by +-L, corners included - after the stored particles (ParticleSet::n_ghost). The
+// images fall in the padding cells; they are counted into cells of their own (ghost_start_),
+// and each x-row's neighbour ranges gain the matching range of images, so the pair loop, the
+// shifting pass and the point interpolations read them like any neighbour without knowing.
+// Images are never centres of the pair loop. drop_ghosts() removes them (the Simulation does
+// at the end of every step); refresh_ghosts() copies their sources' state again after a stage
+// changed it. With no periodic axis none of this runs and the sort is as before.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -43,6 +55,28 @@ class CellGrid {
     start_.assign(num_cells_ + 2, 0);
   }
 
+  // Makes the given axes periodic with period domain_max - domain_min. An image lies within
+  // one cell of a face, so the period must span at least two cells.
+  void set_periodic(const std::array<bool, D>& axes) {
+    any_periodic_ = false;
+    for (int d = 0; d < D; ++d) {
+      periodic_[d] = axes[d];
+      if (!axes[d]) continue;
+      any_periodic_ = true;
+      if (max_[d] - min_[d] < 2.0 * cell_size_)
+        throw std::invalid_argument("CellGrid: the periodic extent on axis " + std::to_string(d) +
+                                    " (" + std::to_string(max_[d] - min_[d]) +
+                                    " m) must be at least two kernel supports (" +
+                                    std::to_string(2.0 * cell_size_) + " m)");
+    }
+  }
+  bool periodic(int axis) const { return periodic_[axis]; }
+  bool any_periodic() const { return any_periodic_; }
+  std::size_t ghost_count() const { return n_ghost_; }
+  // Source (an active index) and cell of image k, stored at ParticleSet::ghost_begin() + k.
+  std::uint32_t ghost_source(std::size_t k) const { return ghost_src_[k]; }
+  std::uint32_t ghost_cell(std::size_t k) const { return ghost_cell_[k]; }
+
   double cell_size() const { return cell_size_; }
   std::size_t num_cells() const { return num_cells_; }
   long cells(int axis) const { return n_[axis]; }
@@ -69,6 +103,8 @@ class CellGrid {
   // Reorders the active particles by cell and excludes the ones that left the domain or hold
   // non-finite values. Allocation-free once the buffers reached their size.
   SortResult sort(ParticleSet<D>& ps) {
+    drop_ghosts(ps);
+    if (any_periodic_) wrap(ps);
     const std::size_t n = ps.size();
     const long ln = static_cast<long>(n);
     const auto excluded_cell = static_cast<std::uint32_t>(num_cells_);
@@ -118,7 +154,32 @@ class CellGrid {
     }
     for (std::uint32_t i = start_[num_cells_]; i < start_[num_cells_ + 1]; ++i)
       cell_of_[i] = excluded_cell;
+    if (any_periodic_) build_ghosts(ps);
     return result;
+  }
+
+  // Removes the periodic images (allocation-free: the arrays keep their capacity).
+  void drop_ghosts(ParticleSet<D>& ps) {
+    n_ghost_ = 0;
+    if (ps.n_ghost == 0) return;
+    const std::size_t keep = ps.total();
+    ps.for_each_field([&](const FieldInfo& f, auto& a) {
+      if (ps.enabled(f)) a.resize(keep);
+    });
+    ps.n_ghost = 0;
+  }
+
+  // Copies position (shifted), velocity and density from each image's source again: after a
+  // stage changed the sources (a boundary model's wall densities, a density re-initialisation,
+  // the integration before the after_integration hooks).
+  void refresh_ghosts(ParticleSet<D>& ps) const {
+    const std::size_t base = ps.ghost_begin();
+    for (std::size_t k = 0; k < n_ghost_; ++k) {
+      const std::uint32_t src = ghost_src_[k];
+      ps.pos[base + k] = ps.pos[src] + ghost_shift_[k];
+      ps.vel[base + k] = ps.vel[src];
+      ps.rho[base + k] = ps.rho[src];
+    }
   }
 
   // Index range [begin, end) of the particles in cell c (valid after sort()).
@@ -136,8 +197,17 @@ class CellGrid {
   // cell c. c must be an interior cell (any cell holding an active particle is).
   template <class Fn>
   void for_each_neighbour_range(std::size_t c, Fn&& fn) const {
-    for_each_neighbour_row(c, [&](std::size_t row) { fn(start_[row - 1], start_[row + 2]); });
+    if (n_ghost_ == 0) {
+      for_each_neighbour_row(c, [&](std::size_t row) { fn(start_[row - 1], start_[row + 2]); });
+    } else {
+      for_each_neighbour_row(c, [&](std::size_t row) {
+        fn(start_[row - 1], start_[row + 2]);
+        fn(ghost_base_ + ghost_start_[row - 1], ghost_base_ + ghost_start_[row + 2]);
+      });
+    }
   }
+  // At most this many ranges per cell (real particles, then images, per x-row).
+  static constexpr int kMaxRanges = 2 * (D == 3 ? 9 : (D == 2 ? 3 : 1));
 
   // Calls fn(row) with the middle cell of each of the 3^(D-1) x-rows around cell c.
   template <class Fn>
@@ -184,12 +254,114 @@ class CellGrid {
   }
 
  private:
+  // Wraps every particle that crossed a periodic face back by one period (position and the
+  // integrator's position memory together, so their difference is kept).
+  void wrap(ParticleSet<D>& ps) const {
+    const long n = static_cast<long>(ps.size());
+#pragma omp parallel for schedule(static) if (n > ParticleSet <D>::kParallelMin)
+    for (long i = 0; i < n; ++i) {
+      for (int d = 0; d < D; ++d) {
+        if (!periodic_[d]) continue;
+        const double L = max_[d] - min_[d];
+        const double x = ps.pos[i][d];
+        double s = 0.0;
+        if (x >= max_[d])
+          s = -L;
+        else if (x < min_[d])
+          s = L;
+        if (s == 0.0) continue;  // also NaN: left for the sort to exclude
+        ps.pos[i][d] += s;
+        ps.pos_prev[i][d] += s;
+      }
+    }
+  }
+
+  // Cell of an image (it may lie up to one cell outside the domain, in the padding).
+  std::uint32_t ghost_cell_index(const Vec<D>& x) const {
+    std::size_t c = 0, stride = 1;
+    for (int d = 0; d < D; ++d) {
+      long i = static_cast<long>(std::floor((x[d] - min_[d]) * inv_cell_)) + 1;
+      i = std::clamp(i, 0L, n_[d] - 1);
+      c += static_cast<std::size_t>(i) * stride;
+      stride *= static_cast<std::size_t>(n_[d]);
+    }
+    return static_cast<std::uint32_t>(c);
+  }
+
+  // Appends the periodic images of the active particles, ordered by cell, and counts them
+  // into ghost_start_. Serial O(N) scan; allocation-free once the buffers reached their size.
+  void build_ghosts(ParticleSet<D>& ps) {
+    const std::size_t n = ps.size(), base = ps.pos.size();
+    cand_src_.clear();
+    cand_shift_.clear();
+    cand_cell_.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec<D>& x = ps.pos[i];
+      std::array<double, D> s{};
+      int axes = 0;
+      for (int d = 0; d < D; ++d) {
+        if (!periodic_[d]) continue;
+        const double L = max_[d] - min_[d];
+        if (x[d] - min_[d] < cell_size_)
+          s[d] = L;
+        else if (max_[d] - x[d] < cell_size_)
+          s[d] = -L;
+        if (s[d] != 0.0) axes |= 1 << d;
+      }
+      // One image per non-empty subset of the axes the particle is near (faces, edges, corners).
+      for (int mask = axes; mask > 0; mask = (mask - 1) & axes) {
+        Vec<D> shift = Vec<D>::Zero();
+        for (int d = 0; d < D; ++d)
+          if (mask & (1 << d)) shift[d] = s[d];
+        cand_src_.push_back(static_cast<std::uint32_t>(i));
+        cand_shift_.push_back(shift);
+        cand_cell_.push_back(ghost_cell_index(x + shift));
+      }
+    }
+    const std::size_t ng = cand_src_.size();
+    ghost_start_.assign(num_cells_ + 2, 0u);
+    for (std::size_t k = 0; k < ng; ++k) ++ghost_start_[cand_cell_[k] + 1];
+    for (std::size_t c = 0; c + 1 < ghost_start_.size(); ++c)
+      ghost_start_[c + 1] += ghost_start_[c];
+    ghost_src_.resize(ng);
+    ghost_shift_.resize(ng);
+    ghost_cell_.resize(ng);
+    cursor_.assign(ghost_start_.begin(), ghost_start_.end());
+    for (std::size_t k = 0; k < ng; ++k) {
+      const std::uint32_t slot = cursor_[cand_cell_[k]]++;
+      ghost_src_[slot] = cand_src_[k];
+      ghost_shift_[slot] = cand_shift_[k];
+      ghost_cell_[slot] = cand_cell_[k];
+    }
+    ps.for_each_field([&](const FieldInfo& f, auto& a) {
+      if (!ps.enabled(f)) return;
+      a.resize(base + ng);
+      for (std::size_t k = 0; k < ng; ++k) a[base + k] = a[ghost_src_[k]];
+    });
+    for (std::size_t k = 0; k < ng; ++k) {
+      ps.pos[base + k] += ghost_shift_[k];
+      ps.pos_prev[base + k] += ghost_shift_[k];
+    }
+    ps.n_ghost = ng;
+    ghost_base_ = static_cast<std::uint32_t>(base);
+    n_ghost_ = ng;
+    for (std::size_t k = 0; k < ng; ++k)
+      has_fluid_[ghost_cell_[k]] |= ps.role[base + k] == Role::Fluid;
+  }
+
   Vec<D> min_ = Vec<D>::Zero(), max_ = Vec<D>::Zero();
   double cell_size_ = 1.0, inv_cell_ = 1.0;
   std::array<long, D> n_{};
   std::size_t num_cells_ = 0;
   std::vector<std::uint32_t> start_, cursor_, order_, cell_of_;
   std::vector<std::uint8_t> has_fluid_;
+  // Periodic axes and images.
+  std::array<bool, D> periodic_{};
+  bool any_periodic_ = false;
+  std::size_t n_ghost_ = 0;
+  std::uint32_t ghost_base_ = 0;
+  std::vector<std::uint32_t> ghost_start_, ghost_src_, ghost_cell_, cand_src_, cand_cell_;
+  std::vector<Vec<D>> ghost_shift_, cand_shift_;
 };
 
 }  // namespace swell

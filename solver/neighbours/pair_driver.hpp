@@ -66,7 +66,7 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
         for (std::uint32_t a = cb; a < ce; ++a) local.idle(a);
         continue;
       }
-      std::array<std::pair<std::uint32_t, std::uint32_t>, (D == 3 ? 9 : 3)> ranges;
+      std::array<std::pair<std::uint32_t, std::uint32_t>, CellGrid<D>::kMaxRanges> ranges;
       int nr = 0;
       std::size_t candidates = 0;
       grid.for_each_neighbour_range(c, [&](std::uint32_t b, std::uint32_t e) {

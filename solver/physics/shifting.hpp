@@ -222,9 +222,11 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
                                ShiftingWork<D>& work) {
   const std::size_t np = ps.size();
   const long n = static_cast<long>(np);
+  // Neighbours may be periodic images (stored after the particles): vol and normal cover them.
+  const std::size_t ns = ps.stored(), gb = ps.ghost_begin();
   if (work.shift.size() < np) work.shift.resize(np);
-  if (work.normal.size() < np) work.normal.resize(np);
-  if (work.vol.size() < np) work.vol.resize(np);
+  if (work.normal.size() < ns) work.normal.resize(ns);
+  if (work.vol.size() < ns) work.vol.resize(ns);
   if (work.grad_c.size() < np) work.grad_c.resize(np);
   if (work.div_r.size() < np) work.div_r.resize(np);
   if (work.cell_flag.size() < grid.num_cells()) work.cell_flag.resize(grid.num_cells());
@@ -233,6 +235,7 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
   const std::vector<double>& vol = work.vol;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) work.vol[i] = ps.mass[i] / ps.rho[i];
+  for (std::size_t i = gb; i < ns; ++i) work.vol[i] = ps.mass[i] / ps.rho[i];
   const double inv_wdp = 1.0 / kernel.w(dp);
   for_each_pair<D, WallsSeeFluid>(
       ps, grid, kernel.support(),
@@ -274,6 +277,10 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
             std::uint8_t{0});
   for (std::size_t a = 0; a < np; ++a)
     if (normal[a].squaredNorm() > 0.0) work.cell_flag[grid.cell_of(a)] = 1;
+  for (std::size_t k = 0; k < ns - gb; ++k) {  // periodic images carry their source's normal
+    normal[gb + k] = normal[grid.ghost_source(k)];
+    if (normal[gb + k].squaredNorm() > 0.0) work.cell_flag[grid.ghost_cell(k)] = 1;
+  }
   std::size_t shifted = 0;
   double max2 = 0.0;
   const std::vector<std::uint8_t>& flag = work.cell_flag;

@@ -40,20 +40,26 @@ struct ForceBuffers {
   }
 };
 
-// P/rho^2 of every active particle, c too where the loop reads it (with_cs), and the largest
-// sound speed (for dt).
+// P/rho^2 of every active particle and periodic image, c too where the loop reads it (with_cs), and
+// the largest sound speed (for dt).
 template <int D>
 void compute_pressure(const ParticleSet<D>& ps, const TaitEos& eos, ForceBuffers<D>& out,
                       bool with_cs = true) {
   const long n = static_cast<long>(ps.size());
   double rho_max = 0.0;
-  if (with_cs && out.cs.size() < ps.total()) out.cs.resize(ps.total());  // once
+  if (with_cs && out.cs.size() < ps.stored()) out.cs.resize(ps.stored());  // once
 #pragma omp parallel for schedule(static) reduction(max : rho_max)
   for (long i = 0; i < n; ++i) {
     const double rho = ps.rho[i];
     out.prs[i] = eos.pressure(rho) / (rho * rho);
     if (with_cs) out.cs[i] = eos.sound_speed(rho);
     rho_max = std::max(rho_max, rho);
+  }
+  // Periodic images: the same values as their sources (their densities are copies).
+  for (std::size_t i = ps.ghost_begin(); i < ps.stored(); ++i) {
+    const double rho = ps.rho[i];
+    out.prs[i] = eos.pressure(rho) / (rho * rho);
+    if (with_cs) out.cs[i] = eos.sound_speed(rho);
   }
   out.cs_max = eos.sound_speed(rho_max);  // c grows with rho
 }

@@ -67,11 +67,25 @@ struct ParticleSet {
 #undef SWELL_DECLARE_FIELD
 
   std::size_t n_active = 0;
+  // Periodic images (CellGrid::sort, periodic axes only) stored at [ghost_begin(), stored()):
+  // copies of active particles within one kernel support of a periodic face, shifted by the
+  // period. They exist only inside a step (read by the pair terms, never integrated, output or
+  // saved); between steps n_ghost is 0.
+  std::size_t n_ghost = 0;
 
   std::size_t size() const {
     return n_active;
   }
+  // Active and excluded particles (everything that is output and saved).
   std::size_t total() const {
+    return pos.size() - n_ghost;
+  }
+  std::size_t ghost_begin() const {
+    return pos.size() - n_ghost;
+  }
+  // Every stored entry, ghosts included: the size per-particle buffers indexed by a pair's
+  // neighbour must have.
+  std::size_t stored() const {
     return pos.size();
   }
 

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -32,9 +33,13 @@ Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles,
   const double support = kernel_support_factor(prm_.kernel) * prm_.h;
   grid_ =
       CellGrid<D>(prm_.domain_min.template head<D>(), prm_.domain_max.template head<D>(), support);
+  std::array<bool, D> periodic{};
+  for (int d = 0; d < D; ++d) periodic[d] = prm_.periodic[d];
+  grid_.set_periodic(periodic);
   f_.resize(ps_.total());
   // Forces at the initial state, so acceleration() (wall loads) is valid before the first step.
   evaluate();
+  grid_.drop_ghosts(ps_);
 }
 
 template <int D>
@@ -129,8 +134,11 @@ template <int D>
 void Simulation<D>::evaluate() {
   sort_particles();
   const double t0 = omp_get_wtime();
+  // Periodic images are read through the force buffers too (rare growth, amortised).
+  if (f_.ace.size() < ps_.stored()) f_.resize(ps_.stored() + ps_.stored() / 8);
   StepState<D> s = state(time_);
   for_each_hook([&](StepHook<D>& h) { h.before_forces(s); });
+  if (ps_.n_ghost > 0) grid_.refresh_ghosts(ps_);  // walls' and re-initialised densities
   boundary_->forces(s);
   for_each_hook([&](StepHook<D>& h) { h.after_forces(s); });
   times_.interaction += omp_get_wtime() - t0;
@@ -147,6 +155,7 @@ void Simulation<D>::after_substep(double t) {
 // dt_cv = h / (max c + max_ab h |v_ab.r_ab| / (r^2 + eta^2)) (Monaghan & Kos 1999).
 template <int D>
 double Simulation<D>::choose_dt() const {
+  if (prm_.fixed_dt > 0.0) return prm_.fixed_dt;
   const long n = static_cast<long>(ps_.size());
   double a2max = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : a2max)
@@ -167,8 +176,10 @@ void Simulation<D>::step() {
   else
     step_symplectic();
   {
+    if (ps_.n_ghost > 0) grid_.refresh_ghosts(ps_);  // images at the integrated state
     StepState<D> s = state(time_ + dt_);
     for_each_hook([&](StepHook<D>& h) { h.after_integration(s); });
+    grid_.drop_ghosts(ps_);  // between steps there are no periodic images
   }
 
   // Density bounds (fluid): excluded and counted as DualSPHysics' RhopOut.
