@@ -88,7 +88,29 @@ std::unique_ptr<GasSolver<1>> make_sod_1d(int n_left) {
   return gas;
 }
 
-int run_gas(GasSolver<1>& gas, double t_end, double dt_fixed) {
+std::unique_ptr<GasSolver<2>> make_sod_slab(int n_left, int rows_left) {
+  using V = Vec<2>;
+  GasParams prm;
+  prm.gamma = kGamma;
+  const double d = 0.5 / n_left, W = rows_left * d;
+  auto gas =
+      std::make_unique<GasSolver<2>>(prm, V(-0.5, 0.0), V(0.5, W), std::array<bool, 2>{true, true});
+  const compressible::IdealGas eos{kGamma};
+  for (int j = 0; j < rows_left; ++j)
+    for (int i = 0; i < n_left; ++i)
+      gas->add(V(-0.5 + (i + 0.5) * d, (j + 0.5) * d), V::Zero(), kLeft.rho * d * d,
+               eos.internal_energy(kLeft.rho, kLeft.p), prm.eta * d);
+  const double dr = 2.0 * d;
+  for (int j = 0; j < rows_left / 2; ++j)
+    for (int i = 0; i < n_left / 2; ++i)
+      gas->add(V((i + 0.5) * dr, (j + 0.5) * dr), V::Zero(), kRight.rho * dr * dr,
+               eos.internal_energy(kRight.rho, kRight.p), prm.eta * dr);
+  gas->initialise();
+  return gas;
+}
+
+template <int D>
+int run_gas(GasSolver<D>& gas, double t_end, double dt_fixed) {
   int steps = 0;
   while (gas.time() < t_end * (1.0 - 1e-12)) {
     double dt = dt_fixed > 0.0 ? dt_fixed : gas.dt_cfl();
@@ -98,6 +120,8 @@ int run_gas(GasSolver<1>& gas, double t_end, double dt_fixed) {
   }
   return steps;
 }
+template int run_gas<1>(GasSolver<1>&, double, double);
+template int run_gas<2>(GasSolver<2>&, double, double);
 
 Result run_sod(const Options& opt) {
   Result res;
@@ -146,8 +170,33 @@ Result run_sod(const Options& opt) {
   // Monaghan's v_sig viscosity with beta = 2 damps post-shock ringing to a few per cent.
   res.figures.push_back(at_most("largest post-shock overshoot of v / v*", worst_v, 0.05));
   res.figures.push_back(at_most("largest post-shock overshoot of rho / jump", worst_rho, 0.10));
+  // The 2D slab: the same tube on a 2D lattice with mirror walls across y, so the solution must
+  // stay one-dimensional; L1 errors per unit width.
+  Table slab{"sod_slab_errors",
+             {"n_left", "rows", "L1 rho", "L1 v", "L1 p", "L1 u", "RMS v_y / v*", "steps"},
+             {}};
+  const std::vector<int> slab_levels =
+      opt.full ? std::vector<int>{100, 200, 400} : std::vector<int>{100, 200};
+  for (int nl : slab_levels) {
+    const int rows = 16;
+    auto gas = make_sod_slab(nl, rows);
+    const int steps = run_gas(*gas, kTEnd, 0.0);
+    const double W = rows * 0.5 / nl;
+    const Errors e = measure(*gas, rs, nullptr);
+    double vy2 = 0.0;
+    for (std::size_t a = 0; a < gas->size(); ++a) vy2 += gas->vel[a][1] * gas->vel[a][1];
+    const double vy = std::sqrt(vy2 / gas->size()) / rs.star().u;
+    slab.rows.push_back(
+        {double(nl), double(rows), e.rho / W, e.v / W, e.p / W, e.u / W, vy, double(steps)});
+    const std::string n = ", 2D slab, n_left = " + std::to_string(nl);
+    res.figures.push_back(report("L1 error of rho" + n, e.rho / W));
+    res.figures.push_back(report("L1 error of p" + n, e.p / W));
+    res.figures.push_back(at_most("RMS v_y / v*" + n, vy, 0.05));
+    res.figures.push_back(report("largest post-shock overshoot of v / v*" + n, e.overshoot_v));
+  }
   res.tables.push_back(errors);
   res.tables.push_back(profile);
+  res.tables.push_back(slab);
   res.plots.push_back({"sod_density",
                        "Sod tube density at t = 0.2 (finest level)",
                        "sod_profile",
@@ -185,8 +234,13 @@ Result run_sod(const Options& opt) {
       "particles (spacing ratio 8), mirror walls at x = +-0.5, against the exact Riemann "
       "solution. L1 errors are volume-weighted (sum m/rho |q - q_exact|) over |x| < 0.4. "
       "Cubic spline, eta = 1.2, grad-h, Monaghan (1997) viscosity alpha = 1, beta = 2, "
-      "kick-drift-kick leapfrog with the CFL step (0.3 h / v_sig). The 2D slab is not "
-      "included yet.";
+      "kick-drift-kick leapfrog with the CFL step (0.3 h / v_sig). The 2D slab: the same "
+      "tube on square lattices (spacing 0.5 / n_left left, twice that right, masses for the "
+      "densities), 16 rows across y between mirror walls; L1 errors per unit width; the "
+      "transverse velocity must stay below 5 % of v* (judged); the L1 errors and the overshoot "
+      "are reported: on these lattices they do not yet converge (measured 0.0115 and 0.0108 "
+      "for rho at n_left = 100 and 200, 9 % velocity overshoot), unlike the 1D tube - the jump "
+      "of lattice spacing at the contact is the first suspect, not yet examined.";
   return res;
 }
 
