@@ -24,12 +24,11 @@ struct Errors {
   double overshoot_v = 0, overshoot_rho = 0;
 };
 
-template <int D>
-Errors measure(const GasSolver<D>& gas, const RiemannSolver& rs, Table* profile) {
+template <class Gas>
+Errors measure(const Gas& gas, const RiemannSolver& rs, Table* profile) {
+  constexpr int D = Gas::V::RowsAtCompileTime;
   Errors e;
   const auto& s = rs.star();
-  const double u_star_r = gas.eos().internal_energy(s.rho_right, s.p);
-  (void)u_star_r;
   for (std::size_t a = 0; a < gas.size(); ++a) {
     const double x = gas.pos[a][0];
     const GasState q = rs.at(x, 0.0, gas.time());
@@ -88,10 +87,11 @@ std::unique_ptr<GasSolver<1>> make_sod_1d(int n_left) {
   return gas;
 }
 
-std::unique_ptr<GasSolver<2>> make_sod_slab(int n_left, int rows_left) {
+std::unique_ptr<GasSolver<2>> make_sod_slab(int n_left, int rows_left, double eta) {
   using V = Vec<2>;
   GasParams prm;
   prm.gamma = kGamma;
+  prm.eta = eta;
   const double d = 0.5 / n_left, W = rows_left * d;
   auto gas =
       std::make_unique<GasSolver<2>>(prm, V(-0.5, 0.0), V(0.5, W), std::array<bool, 2>{true, true});
@@ -109,8 +109,34 @@ std::unique_ptr<GasSolver<2>> make_sod_slab(int n_left, int rows_left) {
   return gas;
 }
 
-template <int D>
-int run_gas(GasSolver<D>& gas, double t_end, double dt_fixed) {
+std::unique_ptr<GasSolver3W> make_sod_slab_3d(int n_left, int rows_left, double eta) {
+  using V = Vec<3>;
+  GasParams prm;
+  prm.gamma = kGamma;
+  prm.eta = eta;
+  const double d = 0.5 / n_left, W = rows_left * d;
+  auto gas = std::make_unique<GasSolver3W>(prm, V(-0.5, 0.0, 0.0), V(0.5, W, W),
+                                           std::array<bool, 3>{true, true, true});
+  const compressible::IdealGas eos{kGamma};
+  // Spacing ratio 2 = 8^(1/3): equal masses on both sides, as in the 1D tube.
+  for (int k = 0; k < rows_left; ++k)
+    for (int j = 0; j < rows_left; ++j)
+      for (int i = 0; i < n_left; ++i)
+        gas->add(V(-0.5 + (i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * d), V::Zero(),
+                 kLeft.rho * d * d * d, eos.internal_energy(kLeft.rho, kLeft.p), prm.eta * d);
+  const double dr = 2.0 * d;
+  for (int k = 0; k < rows_left / 2; ++k)
+    for (int j = 0; j < rows_left / 2; ++j)
+      for (int i = 0; i < n_left / 2; ++i)
+        gas->add(V((i + 0.5) * dr, (j + 0.5) * dr, (k + 0.5) * dr), V::Zero(),
+                 kRight.rho * dr * dr * dr, eos.internal_energy(kRight.rho, kRight.p),
+                 prm.eta * dr);
+  gas->initialise();
+  return gas;
+}
+
+template <class Gas>
+int run_gas(Gas& gas, double t_end, double dt_fixed) {
   int steps = 0;
   while (gas.time() < t_end * (1.0 - 1e-12)) {
     double dt = dt_fixed > 0.0 ? dt_fixed : gas.dt_cfl();
@@ -120,8 +146,42 @@ int run_gas(GasSolver<D>& gas, double t_end, double dt_fixed) {
   }
   return steps;
 }
-template int run_gas<1>(GasSolver<1>&, double, double);
-template int run_gas<2>(GasSolver<2>&, double, double);
+template int run_gas(GasSolver<1>&, double, double);
+template int run_gas(GasSolver<2>&, double, double);
+template int run_gas(GasSolver3W&, double, double);
+
+namespace {
+// One slab level: L1 errors per unit cross-section, the transverse velocity, and the mean
+// pressure on the plateau between the fan's tail and the contact (0 < x < 0.15 at t = 0.2)
+// against p*.
+struct SlabLevel {
+  Errors e;
+  double vperp = 0, plateau_p = 0, secs = 0;
+  int steps = 0;
+  std::size_t n = 0;
+};
+template <class Gas>
+SlabLevel run_slab(Gas& gas, const RiemannSolver& rs, double cross_section,
+                   std::chrono::steady_clock::time_point t0) {
+  constexpr int D = Gas::V::RowsAtCompileTime;
+  SlabLevel L;
+  L.steps = run_gas(gas, kTEnd, 0.0);
+  L.secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  L.n = gas.size();
+  L.e = measure(gas, rs, nullptr);
+  for (double* q : {&L.e.rho, &L.e.v, &L.e.p, &L.e.u}) *q /= cross_section;
+  double v2 = 0.0, ps = 0.0;
+  int np = 0;
+  for (std::size_t a = 0; a < gas.size(); ++a) {
+    for (int d = 1; d < D; ++d) v2 += gas.vel[a][d] * gas.vel[a][d];
+    const double x = gas.pos[a][0];
+    if (x > 0.0 && x < 0.15) ps += gas.pressure[a], ++np;
+  }
+  L.vperp = std::sqrt(v2 / gas.size()) / rs.star().u;
+  L.plateau_p = np ? ps / np : 0.0;
+  return L;
+}
+}  // namespace
 
 Result run_sod(const Options& opt) {
   Result res;
@@ -170,30 +230,62 @@ Result run_sod(const Options& opt) {
   // Monaghan's v_sig viscosity with beta = 2 damps post-shock ringing to a few per cent.
   res.figures.push_back(at_most("largest post-shock overshoot of v / v*", worst_v, 0.05));
   res.figures.push_back(at_most("largest post-shock overshoot of rho / jump", worst_rho, 0.10));
-  // The 2D slab: the same tube on a 2D lattice with mirror walls across y, so the solution must
-  // stay one-dimensional; L1 errors per unit width.
+  // The slabs: the same tube on 2D and 3D lattices between mirror walls, so the solution must
+  // stay one-dimensional; L1 errors per unit cross-section. A lattice crossing the fan is
+  // stretched along x only, by rho_L / rho*_L = 2.35 at its tail, while h = eta (m/rho)^(1/D)
+  // grows by 2.35^(1/D): the x spacing over h grows by 2.35^(1 - 1/D). At eta = 1.2 that is
+  // 1.27 (2D) and 1.47 (3D): the kernel then samples one neighbour column per side and the
+  // plateau pressure comes out 8 % (2D) and 29 % (3D) high at every resolution (measured).
+  // eta >= 2.35^(1 - 1/D) keeps the x spacing within h: 1.5 in 2D (cubic spline, ~28
+  // neighbours); 1.8 in 3D, where the cubic spline pairs (transverse velocity 3.5 % of v* at
+  // n_left 50, measured) and the Wendland C2 kernel, which does not, is used.
   Table slab{"sod_slab_errors",
-             {"n_left", "rows", "L1 rho", "L1 v", "L1 p", "L1 u", "RMS v_y / v*", "steps"},
+             {"D", "n_left", "rows", "particles", "eta", "L1 rho", "L1 v", "L1 p", "L1 u",
+              "plateau p / p*", "RMS v_perp / v*", "overshoot v", "steps", "run time [s]"},
              {}};
-  const std::vector<int> slab_levels =
-      opt.full ? std::vector<int>{100, 200, 400} : std::vector<int>{100, 200};
-  for (int nl : slab_levels) {
-    const int rows = 16;
-    auto gas = make_sod_slab(nl, rows);
-    const int steps = run_gas(*gas, kTEnd, 0.0);
-    const double W = rows * 0.5 / nl;
-    const Errors e = measure(*gas, rs, nullptr);
-    double vy2 = 0.0;
-    for (std::size_t a = 0; a < gas->size(); ++a) vy2 += gas->vel[a][1] * gas->vel[a][1];
-    const double vy = std::sqrt(vy2 / gas->size()) / rs.star().u;
-    slab.rows.push_back(
-        {double(nl), double(rows), e.rho / W, e.v / W, e.p / W, e.u / W, vy, double(steps)});
-    const std::string n = ", 2D slab, n_left = " + std::to_string(nl);
-    res.figures.push_back(report("L1 error of rho" + n, e.rho / W));
-    res.figures.push_back(report("L1 error of p" + n, e.p / W));
-    res.figures.push_back(at_most("RMS v_y / v*" + n, vy, 0.05));
-    res.figures.push_back(report("largest post-shock overshoot of v / v*" + n, e.overshoot_v));
+  struct SlabSpec {
+    int dim, n_left, rows;
+  };
+  std::vector<SlabSpec> specs =
+      opt.full ? std::vector<SlabSpec>{{2, 100, 16}, {2, 200, 16}, {2, 400, 16},
+                                       {3, 50, 8},   {3, 100, 8},  {3, 200, 8}}
+               : std::vector<SlabSpec>{{2, 100, 16}, {2, 200, 16}};
+  constexpr double kEta2 = 1.5, kEta3 = 1.8;
+  std::vector<double> n2, e2, n3, e3;
+  for (const SlabSpec& sp : specs) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double W = sp.rows * 0.5 / sp.n_left;
+    SlabLevel L;
+    if (sp.dim == 2) {
+      auto gas = make_sod_slab(sp.n_left, sp.rows, kEta2);
+      L = run_slab(*gas, rs, W, t0);
+      n2.push_back(sp.n_left), e2.push_back(L.e.rho);
+    } else {
+      auto gas = make_sod_slab_3d(sp.n_left, sp.rows, kEta3);
+      L = run_slab(*gas, rs, W * W, t0);
+      n3.push_back(sp.n_left), e3.push_back(L.e.rho);
+    }
+    const double pp = L.plateau_p / rs.star().p;
+    slab.rows.push_back({double(sp.dim), double(sp.n_left), double(sp.rows), double(L.n),
+                         sp.dim == 2 ? kEta2 : kEta3, L.e.rho, L.e.v, L.e.p, L.e.u, pp, L.vperp,
+                         L.e.overshoot_v, double(L.steps), L.secs});
+    const std::string n =
+        ", " + std::to_string(sp.dim) + "D slab, n_left = " + std::to_string(sp.n_left);
+    res.figures.push_back(report("L1 error of rho" + n, L.e.rho));
+    res.figures.push_back(report("L1 error of v" + n, L.e.v));
+    res.figures.push_back(report("L1 error of p" + n, L.e.p));
+    // The plateau is uniform in the exact solution; 2 % is twice the kernel-sampling bias of
+    // the summation density on the stretched lattice (1.0 % for a 2.24 x 1 lattice, computed).
+    res.figures.push_back(at_most("|plateau pressure / p* - 1|" + n, std::abs(pp - 1.0), 0.02));
+    res.figures.push_back(at_most("RMS v_perp / v*" + n, L.vperp, 0.05));
+    res.figures.push_back(report("largest post-shock overshoot of v / v*" + n, L.e.overshoot_v));
+    res.figures.push_back(report("run time" + n, L.secs, "s"));
   }
+  // The contact dominates the slabs' L1 error; smeared like sqrt(h) it converges at order
+  // ~1/2 (the 1D tube, with equal masses, does better): judged at 0.3.
+  res.figures.push_back(at_least("fitted L1 order of rho, 2D slab", fit_order(n2, e2), 0.3));
+  if (n3.size() > 1)
+    res.figures.push_back(at_least("fitted L1 order of rho, 3D slab", fit_order(n3, e3), 0.3));
   res.tables.push_back(errors);
   res.tables.push_back(profile);
   res.tables.push_back(slab);
@@ -236,11 +328,13 @@ Result run_sod(const Options& opt) {
       "Cubic spline, eta = 1.2, grad-h, Monaghan (1997) viscosity alpha = 1, beta = 2, "
       "kick-drift-kick leapfrog with the CFL step (0.3 h / v_sig). The 2D slab: the same "
       "tube on square lattices (spacing 0.5 / n_left left, twice that right, masses for the "
-      "densities), 16 rows across y between mirror walls; L1 errors per unit width; the "
-      "transverse velocity must stay below 5 % of v* (judged); the L1 errors and the overshoot "
-      "are reported: on these lattices they do not yet converge (measured 0.0115 and 0.0108 "
-      "for rho at n_left = 100 and 200, 9 % velocity overshoot), unlike the 1D tube - the jump "
-      "of lattice spacing at the contact is the first suspect, not yet examined.";
+      "densities), 16 rows across y between mirror walls, cubic spline at eta = 1.5; the 3D "
+      "slab: lattices of spacing d and 2d (equal masses), 8 x 8 rows across, Wendland C2 at "
+      "eta = 1.8 (the --full form only). Why eta is raised in the slabs: a lattice crossing the "
+      "fan is stretched along x only, and at eta = 1.2 the kernel no longer resolves the "
+      "stretched direction (plateau pressure 8 % high in 2D, 29 % in 3D, at every resolution). "
+      "Judged: the plateau pressure within 2 % of p*, the transverse velocity below 5 % of v*, "
+      "the fitted L1 order of rho at least 0.3.";
   return res;
 }
 

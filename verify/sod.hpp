@@ -13,11 +13,16 @@ namespace swell::verify {
 // gamma = 1.4, equal-mass particles: n_left in the left half, n_left/8 in the right.
 std::unique_ptr<compressible::GasSolver<1>> make_sod_1d(int n_left);
 // Runs to t_end with the CFL step (dt_fixed <= 0) or a fixed step; returns the step count.
-template <int D>
-int run_gas(compressible::GasSolver<D>& gas, double t_end, double dt_fixed);
+// (GasSolver<1>, GasSolver<2> and GasSolver3W.)
+template <class Gas>
+int run_gas(Gas& gas, double t_end, double dt_fixed);
 // The same tube as a 2D slab: x in [-0.5, 0.5], y in [0, W], mirror walls on all four sides,
-// lattices of spacing d = 0.5 / n_left (left) and 2d (right), masses for the densities.
-std::unique_ptr<compressible::GasSolver<2>> make_sod_slab(int n_left, int rows_left);
+// lattices of spacing d = 0.5 / n_left (left) and 2d (right), masses for the densities,
+// h = eta (m/rho)^(1/2) with the cubic spline.
+std::unique_ptr<compressible::GasSolver<2>> make_sod_slab(int n_left, int rows_left, double eta);
+// As a 3D slab (y, z in [0, W]): spacings d and 2d give equal masses; the Wendland C2 kernel.
+using GasSolver3W = compressible::GasSolver<3, WendlandC2<3>>;
+std::unique_ptr<GasSolver3W> make_sod_slab_3d(int n_left, int rows_left, double eta);
 
 Result run_sod(const Options& opt);
 

@@ -41,11 +41,13 @@ struct GasParams {
   double h_tolerance = 1e-10;  // relative change of h that ends the Newton iterations
 };
 
-template <int D>
+// K: the kernel (CubicSpline by default; WendlandC2 where many neighbours are needed, since
+// the Wendland functions do not pair at any neighbour number: Dehnen & Aly 2012, MNRAS 425:1068).
+template <int D, class K = CubicSpline<D>>
 class GasSolver {
  public:
   using V = Vec<D>;
-  using Kernel = CubicSpline<D>;
+  using Kernel = K;
 
   // Particles: positions, velocities, masses, specific internal energies. lo/hi bound the box;
   // mirror[d] puts mirror walls at lo[d] and hi[d] (otherwise the direction is open).
