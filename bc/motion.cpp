@@ -222,8 +222,6 @@ MotionLaw::MotionLaw(const MotionSpec& spec) : spec_(spec) {
   }
   const bool flap = spec_.type == Type::Wave && spec_.paddle &&
                     spec_.paddle->paddle.type == waves::PaddleGeometry::Type::Flap;
-  const bool rotates = spec_.type == Type::Rotation || flap ||
-                       (spec_.type == Type::File && spec_.quantity == MotionSpec::Quantity::Angle);
   const bool oscillates =
       spec_.type == Type::Sinusoidal || (spec_.type == Type::Rotation && !spec_.rate);
   if (spec_.type == Type::Sinusoidal || spec_.type == Type::Wave ||
@@ -236,7 +234,7 @@ MotionLaw::MotionLaw(const MotionSpec& spec) : spec_(spec) {
       throw std::invalid_argument("motion: a flap needs its hinge below the still-water level");
     }
   }
-  if (rotates) check_unit(spec_.axis, "rotation axis");
+  if (rotates()) check_unit(spec_.axis, "rotation axis");
   if (oscillates) {
     if (!(spec_.period > 0.0) || !std::isfinite(spec_.period)) {
       throw std::invalid_argument("motion: period must be a number > 0 s, got " +
@@ -375,6 +373,14 @@ void MotionLaw::law_at(double tau, RigidPose& p) const {
       break;
     }
   }
+}
+
+bool MotionLaw::rotates() const {
+  using Type = MotionSpec::Type;
+  const bool flap = spec_.type == Type::Wave && spec_.paddle &&
+                    spec_.paddle->paddle.type == waves::PaddleGeometry::Type::Flap;
+  return spec_.type == Type::Rotation || flap ||
+         (spec_.type == Type::File && spec_.quantity == MotionSpec::Quantity::Angle);
 }
 
 RigidPose MotionLaw::pose(double t) const {

@@ -149,6 +149,8 @@ class MotionLaw {
   explicit MotionLaw(const MotionSpec& spec);
 
   bool moves() const { return spec_.type != MotionSpec::Type::None; }
+  // Whether the pose can include a rotation (rotation laws, angle records, a flap paddle).
+  bool rotates() const;
   const MotionSpec& spec() const { return spec_; }
 
   // The pose at time t (rules in the file comment). No allocation.

@@ -234,6 +234,11 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     hi = hi.cwiseMax(s.particles.pos[i]);
   }
   // A moving body must never be excluded: the box holds its whole path up to time.end.
+  struct Swept {
+    std::size_t body;
+    Eigen::Vector3d lo, hi;
+  };
+  std::vector<Swept> rotating;  // the paths of bodies that turn (checked against periodic faces)
   for (std::size_t b = 0; b < s.motions.size(); ++b) {
     if (!s.motions[b].moves()) continue;
     Eigen::Vector3d blo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -247,6 +252,11 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     const auto corners = box_corners(blo, bhi);
     Eigen::Vector3d slo, shi;
     sweep_bounds(s.motions[b], spec.t_end, corners, slo, shi);
+    // Along a periodic axis the path may cross the faces: the body comes back through the
+    // other one (CellGrid wraps its particles and their reference positions).
+    if (s.motions[b].rotates()) rotating.push_back({b, slo, shi});
+    for (int d = 0; d < D; ++d)
+      if (spec.periodic[static_cast<std::size_t>(d)]) slo[d] = blo[d], shi[d] = bhi[d];
     lo = lo.cwiseMin(Vec<D>(slo.template head<D>()));
     hi = hi.cwiseMax(Vec<D>(shi.template head<D>()));
   }
@@ -271,6 +281,20 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   p.domain_max.template head<D>() =
       spec.domain_max ? Vec<D>(spec.domain_max->template head<D>()) : dhi;
 
+  // A body wrapped through a periodic face is moved by the period in its reference frame,
+  // which is only its own image for a translation: a turning body must stay off the faces.
+  for (const Swept& r : rotating)
+    for (int d = 0; d < D; ++d) {
+      if (!spec.periodic[static_cast<std::size_t>(d)]) continue;
+      if (r.lo[d] >= p.domain_min[d] && r.hi[d] <= p.domain_max[d]) continue;
+      const auto& body = spec.bodies[r.body];
+      std::ostringstream m;
+      m << "bodies[].motion: body '" << body.name << "' turns and its path up to time.end ("
+        << r.lo[d] << " - " << r.hi[d] << " along "
+        << "xyz"[d] << ") crosses the periodic faces at " << p.domain_min[d] << " and "
+        << p.domain_max[d] << "; only translating bodies may cross a periodic face";
+      throw CaseError(spec.file, body.line, m.str());
+    }
   // An explicit domain must hold every particle (and every moving body's path): what lies
   // outside would be excluded at the first step.
   const Vec<D> dmin = p.domain_min.template head<D>(), dmax = p.domain_max.template head<D>();

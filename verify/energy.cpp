@@ -29,14 +29,8 @@ Result run_energy(const Options& opt) {
     drifts.push_back(drift);
     res.figures.push_back(report("relative energy drift, dt = " + std::to_string(dt), drift));
   }
-  // Order between successive halvings and the least-squares fit.
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < dts.size(); ++i) {
-    const double x = std::log(dts[i]), y = std::log(drifts[i]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  const double k = double(dts.size());
-  const double order = (k * sxy - sx * sy) / (k * sxx - sx * sx);
+  // The least-squares order of the drift in dt.
+  const double order = log_log_slope(dts, drifts);
   // Kick-drift-kick is second order: the drift should fall as dt^2. The velocity-dependent
   // viscosity and the h iteration (tolerance 1e-10) make it not exactly symplectic, so 1.8
   // is the bound (a first-order error would give 1).

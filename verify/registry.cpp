@@ -3,6 +3,7 @@
 #include "verify/angular_momentum.hpp"
 #include "verify/energy.hpp"
 #include "verify/flows.hpp"
+#include "verify/noh.hpp"
 #include "verify/operators.hpp"
 #include "verify/sod.hpp"
 #include "verify/tensile.hpp"
@@ -29,6 +30,8 @@ const std::vector<Verification>& all() {
        run_tensile},
       {"sod", "Sod shock tube: compressible SPH against the exact Riemann solution", run_sod},
       {"energy", "Total energy conservation of the compressible path against dt", run_energy},
+      {"noh", "planar Noh problem: a cold stream into a wall (jump conditions, wall heating)",
+       run_noh},
   };
   return list;
 }

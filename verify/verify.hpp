@@ -47,6 +47,17 @@ inline Figure report(std::string name, double value, std::string unit = "") {
           std::move(unit)};
 }
 
+// Least-squares slope of log y against log x (an error falling as x^-k has slope -k).
+inline double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double k = double(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  return (k * sxy - sx * sy) / (k * sxx - sx * sx);
+}
+
 // A table of numbers, written as NAME/<file>.csv (header = columns).
 struct Table {
   std::string file;                       // file stem, e.g. "gradient_convergence"

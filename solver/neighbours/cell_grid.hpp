@@ -258,6 +258,7 @@ class CellGrid {
   // integrator's position memory together, so their difference is kept).
   void wrap(ParticleSet<D>& ps) const {
     const long n = static_cast<long>(ps.size());
+    const bool has_ref = !ps.pos_ref.empty();
 #pragma omp parallel for schedule(static) if (n > ParticleSet <D>::kParallelMin)
     for (long i = 0; i < n; ++i) {
       for (int d = 0; d < D; ++d) {
@@ -272,6 +273,9 @@ class CellGrid {
         if (s == 0.0) continue;  // also NaN: left for the sort to exclude
         ps.pos[i][d] += s;
         ps.pos_prev[i][d] += s;
+        // A moving wall is placed from its reference each substep: the reference goes with it
+        // (a translation only; case setup refuses rotating bodies that cross a periodic face).
+        if (has_ref && ps.role[i] == Role::MovingWall) ps.pos_ref[i][d] += s;
       }
     }
   }
