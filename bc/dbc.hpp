@@ -102,7 +102,6 @@ void initialise_hydrostatic(ParticleSet<D>& ps, const SolverParams& prm) {
   }
   for (std::size_t i = 0; i < ps.size(); ++i) {
     ps.rho_prev[i] = ps.rho[i];
-    ps.pos_prev[i] = ps.pos[i];
     ps.vel_prev[i] = ps.vel[i];
   }
 }

@@ -29,7 +29,7 @@
 //   /               attributes dim, n_active, total, case_identity, case_name, case_file,
 //                   complete (=1, written last)
 //   /particles      every enabled field of ParticleSet's field table under its name (pos, vel,
-//                   rho, pos_prev, vel_prev, rho_prev, mass, role, body, id, and pos_ref in
+//                   rho, vel_prev, rho_prev, mass, role, body, id, and pos_ref in
 //                   runs with moving bodies), over the whole storage [0, total()) in the
 //                   current order
 //   /clock          attributes time, steps, dt, first_dt, verlet_counter,

@@ -10,6 +10,7 @@
 
 #include "solver/neighbours/cell_grid.hpp"
 #include "solver/state/particle_set.hpp"
+#include "verify/verify.hpp"
 
 namespace swell::verify {
 
@@ -52,21 +53,6 @@ Cloud<D> make_cloud(int n, double h_over_dp, double support_factor, double jitte
   c.grid = CellGrid<D>(Vec<D>::Constant(-s), Vec<D>::Constant(1.0 + s), s);
   c.grid.sort(c.ps);
   return c;
-}
-
-// Least-squares slope of log(err) against log(x): the fitted order.
-template <class V>
-double fitted_order(const V& x, const V& err) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double lx = std::log(x[i]), ly = std::log(err[i]);
-    sx += lx;
-    sy += ly;
-    sxx += lx * lx;
-    sxy += lx * ly;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 }  // namespace swell::verify

@@ -30,7 +30,7 @@ Result run_energy(const Options& opt) {
     res.figures.push_back(report("relative energy drift, dt = " + std::to_string(dt), drift));
   }
   // The least-squares order of the drift in dt.
-  const double order = log_log_slope(dts, drifts);
+  const double order = fitted_order(dts, drifts);
   // Kick-drift-kick is second order: the drift should fall as dt^2. The velocity-dependent
   // viscosity and the h iteration (tolerance 1e-10) make it not exactly symplectic, so 1.8
   // is the bound (a first-order error would give 1).

@@ -59,7 +59,7 @@ Errors measure(const Gas& gas, const RiemannSolver& rs, Table* profile, double b
 }
 
 double fit_order(const std::vector<double>& n, const std::vector<double>& err) {
-  return -log_log_slope(n, err);  // err ~ n^-order
+  return -fitted_order(n, err);  // err ~ n^-order
 }
 }  // namespace
 

@@ -47,15 +47,17 @@ inline Figure report(std::string name, double value, std::string unit = "") {
           std::move(unit)};
 }
 
-// Least-squares slope of log y against log x (an error falling as x^-k has slope -k).
-inline double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
+// Least-squares slope of log(err) against log(x): the fitted order (an error falling as x^k
+// has order k; against a particle number n, err ~ n^-k gives -k).
+template <class V>
+double fitted_order(const V& x, const V& err) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double k = double(x.size());
+  const double n = static_cast<double>(x.size());
   for (std::size_t i = 0; i < x.size(); ++i) {
-    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    const double lx = std::log(x[i]), ly = std::log(err[i]);
     sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
   }
-  return (k * sxy - sx * sy) / (k * sxx - sx * sx);
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 // A table of numbers, written as NAME/<file>.csv (header = columns).

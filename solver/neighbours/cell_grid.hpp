@@ -254,8 +254,8 @@ class CellGrid {
   }
 
  private:
-  // Wraps every particle that crossed a periodic face back by one period (position and the
-  // integrator's position memory together, so their difference is kept).
+  // Wraps every particle that crossed a periodic face back by one period (and a moving wall's
+  // reference position with it).
   void wrap(ParticleSet<D>& ps) const {
     const long n = static_cast<long>(ps.size());
     const bool has_ref = !ps.pos_ref.empty();
@@ -272,7 +272,6 @@ class CellGrid {
           s = L;
         if (s == 0.0) continue;  // also NaN: left for the sort to exclude
         ps.pos[i][d] += s;
-        ps.pos_prev[i][d] += s;
         // A moving wall is placed from its reference each substep: the reference goes with it
         // (a translation only; case setup refuses rotating bodies that cross a periodic face).
         if (has_ref && ps.role[i] == Role::MovingWall) ps.pos_ref[i][d] += s;
@@ -342,10 +341,7 @@ class CellGrid {
       a.resize(base + ng);
       for (std::size_t k = 0; k < ng; ++k) a[base + k] = a[ghost_src_[k]];
     });
-    for (std::size_t k = 0; k < ng; ++k) {
-      ps.pos[base + k] += ghost_shift_[k];
-      ps.pos_prev[base + k] += ghost_shift_[k];
-    }
+    for (std::size_t k = 0; k < ng; ++k) ps.pos[base + k] += ghost_shift_[k];
     ps.n_ghost = ng;
     ghost_base_ = static_cast<std::uint32_t>(base);
     n_ghost_ = ng;

@@ -43,8 +43,8 @@ struct FieldInfo {
   X(pos, V, FieldClass::State, "pos", false)                                               \
   X(vel, V, FieldClass::State, "vel", false)                                               \
   X(rho, double, FieldClass::State, "rho", false)                                          \
-  /* integrator memory: x^n, v^n, rho^n (symplectic) or v^{n-1}, rho^{n-1} (Verlet) */     \
-  X(pos_prev, V, FieldClass::Integrator, nullptr, false)                                   \
+  /* integrator memory: v^n, rho^n (symplectic) or v^{n-1}, rho^{n-1} (Verlet); neither */ \
+  /* reads x^n (the symplectic corrector drifts on from the predicted position)         */ \
   X(vel_prev, V, FieldClass::Integrator, nullptr, false)                                   \
   X(rho_prev, double, FieldClass::Integrator, nullptr, false)                              \
   X(mass, double, FieldClass::Constant, "mass", false)                                     \
@@ -157,7 +157,6 @@ struct ParticleSet {
     pos.back() = x;
     vel.back() = v;
     rho.back() = density;
-    pos_prev.back() = x;
     vel_prev.back() = v;
     rho_prev.back() = density;
     mass.back() = m;

@@ -247,7 +247,6 @@ void Simulation<D>::step_symplectic() {
   const double half = 0.5 * dt_;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
-    ps_.pos_prev[i] = ps_.pos[i];
     ps_.vel_prev[i] = ps_.vel[i];
     ps_.rho_prev[i] = ps_.rho[i];
     ps_.rho[i] += half * f_.drho[i];
