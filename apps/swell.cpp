@@ -27,6 +27,7 @@
 #include "io/case_schema.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/provenance.hpp"
+#include "parallel/comm.hpp"
 #include "solver/time/simulation.hpp"
 #include "validation/validation_manifest.hpp"
 
@@ -63,6 +64,8 @@ int main(int argc, char** argv) {
   // (ulimit -f) makes writes fail with EFBIG, reported like a full disk, instead of killing.
   swell::hdf5_no_atexit();
   std::signal(SIGXFSZ, SIG_IGN);
+  // MPI, only when started by mpirun (parallel/comm.hpp).
+  swell::parallel::Environment mpi(argc, argv);
 
   CLI::App app{"Swell: weakly-compressible SPH for coastal and hydraulic engineering"};
   app.require_subcommand(1);
@@ -260,6 +263,14 @@ int main(int argc, char** argv) {
 
   try {
     if (*run) {
+      // The decomposition (parallel/) is not wired into the time loop yet: N ranks would
+      // each run the whole case into the same folder. Refused before anything is written.
+      if (const int ranks = swell::parallel::Comm::world().size(); ranks > 1)
+        throw std::invalid_argument(
+            "swell run: started on " + std::to_string(ranks) +
+            " MPI ranks, but multi-rank runs are not implemented yet (the slab decomposition "
+            "in parallel/ is built and tested, the time loop does not use it); run one rank, "
+            "with OpenMP threads (-t N)");
       const swell::CaseSpec spec = swell::load_case_file(case_path);
       swell::RunOptions opt;
       if (!restart_dir.empty()) {

@@ -433,7 +433,8 @@ struct FakeApt {
 // Everything scripts/setup needs except libvtk9-dev.
 const std::string kAllButVtk =
     "build-essential cmake libeigen3-dev libcgal-dev libhdf5-dev libyaml-cpp-dev libgtest-dev "
-    "libomp-dev libcli11-dev libssl-dev python3-matplotlib python3-numpy python3-h5py";
+    "libomp-dev libcli11-dev libssl-dev libopenmpi-dev python3-matplotlib python3-numpy "
+    "python3-h5py";
 
 TEST(Setup, StopsWhenTheInstallWouldRemoveParaViewsPython) {
   const FakeApt apt("paraview", kAllButVtk + " python3-paraview paraview", "python3-paraview");

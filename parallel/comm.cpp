@@ -1,0 +1,151 @@
+#include "parallel/comm.hpp"
+
+#include <cstdlib>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#ifdef SWELL_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace swell::parallel {
+
+bool have_mpi() {
+#ifdef SWELL_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+bool launched_by_mpirun() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+Comm Comm::world() {
+  Comm c;
+#ifdef SWELL_HAVE_MPI
+  int init = 0, fin = 0;
+  MPI_Initialized(&init);
+  MPI_Finalized(&fin);
+  if (init && !fin) {
+    MPI_Comm_rank(MPI_COMM_WORLD, &c.rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &c.size_);
+    c.mpi_ = true;
+  }
+#endif
+  return c;
+}
+
+#ifdef SWELL_HAVE_MPI
+namespace {
+template <class T>
+T reduce(T x, MPI_Datatype type, MPI_Op op) {
+  T y{};
+  MPI_Allreduce(&x, &y, 1, type, op, MPI_COMM_WORLD);
+  return y;
+}
+}  // namespace
+#endif
+
+double Comm::min(double x) const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_) return reduce(x, MPI_DOUBLE, MPI_MIN);
+#endif
+  return x;
+}
+double Comm::max(double x) const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_) return reduce(x, MPI_DOUBLE, MPI_MAX);
+#endif
+  return x;
+}
+double Comm::sum(double x) const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_) return reduce(x, MPI_DOUBLE, MPI_SUM);
+#endif
+  return x;
+}
+std::uint64_t Comm::sum(std::uint64_t x) const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_) return reduce(x, MPI_UINT64_T, MPI_SUM);
+#endif
+  return x;
+}
+
+void Comm::sum_in_place(std::vector<std::uint64_t>& v) const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_ && !v.empty())
+    MPI_Allreduce(MPI_IN_PLACE, v.data(), static_cast<int>(v.size()), MPI_UINT64_T, MPI_SUM,
+                  MPI_COMM_WORLD);
+#endif
+  (void)v;
+}
+
+std::vector<std::uint64_t> Comm::gather_all(std::uint64_t x) const {
+  std::vector<std::uint64_t> all(static_cast<std::size_t>(size_), x);
+#ifdef SWELL_HAVE_MPI
+  if (mpi_) MPI_Allgather(&x, 1, MPI_UINT64_T, all.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
+#endif
+  return all;
+}
+
+void Comm::alltoallv(const std::vector<std::byte>& send, const std::vector<int>& send_count,
+                     std::vector<std::byte>& recv, std::vector<int>& recv_count,
+                     std::vector<int>& recv_displ) const {
+  const auto n = static_cast<std::size_t>(size_);
+  if (send_count.size() != n) throw std::invalid_argument("Comm::alltoallv: one count per rank");
+  recv_count.resize(n);
+  recv_displ.resize(n);
+  if (!mpi_) {
+    recv_count[0] = send_count[0];
+    recv_displ[0] = 0;
+    recv.assign(send.begin(), send.begin() + send_count[0]);
+    return;
+  }
+#ifdef SWELL_HAVE_MPI
+  // Displacements: the send buffer holds the ranks' parts in rank order.
+  thread_local std::vector<int> send_displ;
+  send_displ.resize(n);
+  std::exclusive_scan(send_count.begin(), send_count.end(), send_displ.begin(), 0);
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, recv_count.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::exclusive_scan(recv_count.begin(), recv_count.end(), recv_displ.begin(), 0);
+  const std::size_t total =
+      static_cast<std::size_t>(recv_displ.back()) + static_cast<std::size_t>(recv_count.back());
+  if (recv.size() < total) recv.resize(total);
+  MPI_Alltoallv(send.data(), send_count.data(), send_displ.data(), MPI_BYTE, recv.data(),
+                recv_count.data(), recv_displ.data(), MPI_BYTE, MPI_COMM_WORLD);
+#endif
+}
+
+void Comm::barrier() const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_) MPI_Barrier(MPI_COMM_WORLD);
+#endif
+}
+
+Environment::Environment(int& argc, char**& argv) {
+#ifdef SWELL_HAVE_MPI
+  int init = 0;
+  MPI_Initialized(&init);
+  if (!init && launched_by_mpirun()) {
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    owner_ = true;
+  }
+#else
+  (void)argc;
+  (void)argv;
+#endif
+}
+
+Environment::~Environment() {
+#ifdef SWELL_HAVE_MPI
+  if (owner_) MPI_Finalize();
+#endif
+}
+
+}  // namespace swell::parallel

@@ -1,0 +1,233 @@
+// Domain decomposition by slabs (issue #16): the global domain is cut along one axis (the
+// longest, by default) into one slab per rank; a particle belongs to the rank whose slab holds
+// its coordinate on that axis. Bounds are balanced by particle count from a global histogram
+// (rebalance at an interval: a moving front unbalances a static split), never narrower than
+// a minimum width (the kernel support, so a halo only ever comes from the next slab).
+//
+// Particles travel between ranks as whole records packed from the field table (every enabled
+// field, raw bytes: the state arrives bit for bit). Migration sends the active particles that
+// left this rank's slab to their owners; excluded particles stay where they were excluded.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "parallel/comm.hpp"
+#include "solver/state/particle_set.hpp"
+
+namespace swell::parallel {
+
+// Bytes of one particle's record: the sum of its enabled fields' element sizes.
+template <int D>
+std::size_t record_bytes(const ParticleSet<D>& ps) {
+  std::size_t b = 0;
+  ps.for_each_field([&](const FieldInfo& f, const auto& a) {
+    if (ps.enabled(f)) b += sizeof(typename std::decay_t<decltype(a)>::value_type);
+  });
+  return b;
+}
+
+// Writes particle i's record at out (record_bytes(ps) bytes).
+template <int D>
+void pack(const ParticleSet<D>& ps, std::size_t i, std::byte* out) {
+  ps.for_each_field([&](const FieldInfo& f, const auto& a) {
+    if (!ps.enabled(f)) return;
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    std::memcpy(out, &a[i], sizeof(T));
+    out += sizeof(T);
+  });
+}
+
+// Overwrites particle i with the record at in (the same enabled fields).
+template <int D>
+void unpack(ParticleSet<D>& ps, std::size_t i, const std::byte* in) {
+  ps.for_each_field([&](const FieldInfo& f, auto& a) {
+    if (!ps.enabled(f)) return;
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    std::memcpy(&a[i], in, sizeof(T));
+    in += sizeof(T);
+  });
+}
+
+// The slab bounds: rank r owns lo[r] <= x[axis] < lo[r + 1]; the first and last slabs reach
+// to -inf / +inf along the axis (particles beyond the global domain are excluded by the
+// sort, wherever they are).
+struct Slabs {
+  int axis = 0;
+  std::vector<double> lo;  // size() + 1 entries; lo.front() and lo.back() are the domain's ends
+  int size() const { return static_cast<int>(lo.size()) - 1; }
+  int owner(double x) const {
+    // The first bound above x, among the inner bounds lo[1..size-1].
+    const auto it = std::upper_bound(lo.begin() + 1, lo.end() - 1, x);
+    return static_cast<int>(it - (lo.begin() + 1));
+  }
+};
+
+// Even slabs over [lo, hi] along axis for n ranks.
+inline Slabs even_slabs(int axis, double lo, double hi, int n) {
+  Slabs s;
+  s.axis = axis;
+  s.lo.resize(static_cast<std::size_t>(n) + 1);
+  for (int r = 0; r <= n; ++r) s.lo[static_cast<std::size_t>(r)] = lo + (hi - lo) * r / n;
+  return s;
+}
+
+// The longest axis of a box (the slab axis by default: the fewest particles per face).
+template <int D>
+int longest_axis(const Vec<D>& lo, const Vec<D>& hi) {
+  int a = 0;
+  for (int d = 1; d < D; ++d)
+    if (hi[d] - lo[d] > hi[a] - lo[a]) a = d;
+  return a;
+}
+
+// Bounds that split the active particles of every rank into equal counts along axis, from a
+// global histogram of `bins` bins over [lo, hi] (resolution (hi - lo) / bins). Each slab is at
+// least min_width wide (the kernel support); throws if the domain cannot hold size() such
+// slabs. Collective: every rank calls it with the same arguments and gets the same bounds.
+template <int D>
+Slabs balanced_slabs(const ParticleSet<D>& ps, int axis, double lo, double hi, double min_width,
+                     const Comm& comm, int bins = 4096) {
+  const int n = comm.size();
+  if (!(hi - lo >= n * min_width))
+    throw std::invalid_argument(
+        "domain decomposition: " + std::to_string(n) + " slabs of at least " +
+        std::to_string(min_width) + " m (one kernel support) do not fit the domain's " +
+        std::to_string(hi - lo) + " m along " + std::string(1, "xyz"[axis]) + "; use fewer ranks");
+  std::vector<std::uint64_t> hist(static_cast<std::size_t>(bins), 0);
+  const double w = (hi - lo) / bins;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const double x = ps.pos[i][axis];
+    if (!std::isfinite(x)) continue;
+    const int b = std::clamp(static_cast<int>((x - lo) / w), 0, bins - 1);
+    ++hist[static_cast<std::size_t>(b)];
+  }
+  comm.sum_in_place(hist);
+  std::uint64_t total = 0;
+  for (auto c : hist) total += c;
+  Slabs s = even_slabs(axis, lo, hi, n);
+  if (total == 0 || n == 1) return s;
+  // Cut r at the first bin edge where the running count reaches r N / n, then push the cuts
+  // apart to the minimum width (left to right, then right to left from the far end).
+  std::uint64_t run = 0;
+  int r = 1;
+  for (int b = 0; b < bins && r < n; ++b) {
+    run += hist[static_cast<std::size_t>(b)];
+    while (r < n && run * static_cast<std::uint64_t>(n) >= total * static_cast<std::uint64_t>(r))
+      s.lo[static_cast<std::size_t>(r++)] = lo + (b + 1) * w;
+  }
+  for (int k = 1; k < n; ++k)
+    s.lo[static_cast<std::size_t>(k)] = std::max(s.lo[static_cast<std::size_t>(k)],
+                                                 s.lo[static_cast<std::size_t>(k - 1)] + min_width);
+  for (int k = n - 1; k >= 1; --k)
+    s.lo[static_cast<std::size_t>(k)] = std::min(s.lo[static_cast<std::size_t>(k)],
+                                                 s.lo[static_cast<std::size_t>(k + 1)] - min_width);
+  return s;
+}
+
+// Largest rank's active particle count over the mean (1 = perfect balance).
+template <int D>
+double imbalance(const ParticleSet<D>& ps, const Comm& comm) {
+  const auto counts = comm.gather_all(ps.size());
+  std::uint64_t mx = 0, sum = 0;
+  for (auto c : counts) mx = std::max(mx, c), sum += c;
+  return sum ? static_cast<double>(mx) * comm.size() / static_cast<double>(sum) : 1.0;
+}
+
+// Sends every active particle that lies outside this rank's slab to its owner and takes in
+// those that arrive (appended to the active range, before the excluded particles). The order
+// of the particles that stay is kept; arrivals follow in sender-rank order, each sender's in
+// its own order, so the result is deterministic for a fixed rank count. Periodic images must
+// have been dropped. The buffers are the caller's and are reused (no allocation once grown).
+struct MigrationBuffers {
+  std::vector<std::byte> send, recv;
+  std::vector<int> send_count, recv_count, recv_displ;
+  std::vector<int> dest;               // per active particle: its owner
+  std::vector<std::uint32_t> order;    // staying particles, then the excluded ones
+  std::vector<std::size_t> cursor;     // packing offsets per destination rank
+  std::size_t sent = 0, received = 0;  // particles, this call
+};
+
+template <int D>
+void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, MigrationBuffers& buf) {
+  if (ps.n_ghost != 0) throw std::logic_error("migrate: drop the periodic images first");
+  const int me = comm.rank(), n = comm.size();
+  if (slabs.size() != n) throw std::invalid_argument("migrate: one slab per rank");
+  const std::size_t rec = record_bytes(ps), na = ps.size(), total = ps.total();
+  buf.dest.resize(na);
+  buf.send_count.assign(static_cast<std::size_t>(n), 0);
+  std::size_t leaving = 0;
+  for (std::size_t i = 0; i < na; ++i) {
+    const double x = ps.pos[i][slabs.axis];
+    // A non-finite position stays here: the sort excludes it.
+    const int o = std::isfinite(x) ? slabs.owner(x) : me;
+    buf.dest[i] = o;
+    if (o != me) {
+      buf.send_count[static_cast<std::size_t>(o)] += static_cast<int>(rec);
+      ++leaving;
+    }
+  }
+  // Pack in destination-rank order.
+  if (buf.send.size() < leaving * rec) buf.send.resize(leaving * rec);
+  {
+    std::vector<std::size_t>& cursor = buf.cursor;
+    cursor.assign(static_cast<std::size_t>(n), 0);
+    std::size_t off = 0;
+    for (int r = 0; r < n; ++r) {
+      cursor[static_cast<std::size_t>(r)] = off;
+      off += static_cast<std::size_t>(buf.send_count[static_cast<std::size_t>(r)]);
+    }
+    for (std::size_t i = 0; i < na; ++i) {
+      if (buf.dest[i] == me) continue;
+      auto& c = cursor[static_cast<std::size_t>(buf.dest[i])];
+      pack(ps, i, buf.send.data() + c);
+      c += rec;
+    }
+  }
+  comm.alltoallv(buf.send, buf.send_count, buf.recv, buf.recv_count, buf.recv_displ);
+  std::size_t arriving = 0;
+  for (int r = 0; r < n; ++r) {
+    const auto bytes = static_cast<std::size_t>(buf.recv_count[static_cast<std::size_t>(r)]);
+    if (bytes % rec != 0)
+      throw std::runtime_error("migrate: rank " + std::to_string(r) +
+                               " sent records of another size (its optional fields differ)");
+    arriving += bytes / rec;
+  }
+  // New layout: staying active particles, arrivals, then the excluded ones.
+  buf.order.clear();
+  for (std::size_t i = 0; i < na; ++i)
+    if (buf.dest[i] == me) buf.order.push_back(static_cast<std::uint32_t>(i));
+  const std::size_t stay = buf.order.size();
+  for (std::size_t i = na; i < total; ++i) buf.order.push_back(static_cast<std::uint32_t>(i));
+  if (leaving > 0 || arriving > 0) {
+    // Keep the staying and excluded particles (permute to the front), then grow by the
+    // arrivals and move the excluded block behind them.
+    ps.permute(buf.order);  // size() is now total - leaving entries in that order
+    const std::size_t excluded = total - na, kept = stay + excluded;
+    ps.for_each_field([&](const FieldInfo& f, auto& a) {
+      if (!ps.enabled(f)) return;
+      a.resize(kept + arriving);
+      // Excluded block [stay, kept) moves to [stay + arriving, kept + arriving).
+      std::move_backward(a.begin() + static_cast<long>(stay), a.begin() + static_cast<long>(kept),
+                         a.begin() + static_cast<long>(kept + arriving));
+    });
+    std::size_t slot = stay;
+    for (int r = 0; r < n; ++r) {
+      const std::size_t k =
+          static_cast<std::size_t>(buf.recv_count[static_cast<std::size_t>(r)]) / rec;
+      const std::byte* in = buf.recv.data() + buf.recv_displ[static_cast<std::size_t>(r)];
+      for (std::size_t j = 0; j < k; ++j, ++slot, in += rec) unpack(ps, slot, in);
+    }
+    ps.n_active = stay + arriving;
+  }
+  buf.sent = leaving;
+  buf.received = arriving;
+}
+
+}  // namespace swell::parallel

@@ -1,0 +1,127 @@
+// The decomposition's single-rank pieces (parallel/): a particle record packed from the field
+// table comes back bit for bit, slab ownership, and the one-rank communicator (what a build
+// without MPI, or a run without mpirun, uses) is the identity. The multi-rank tests are in
+// tests/mpi/ (run through mpirun).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "parallel/comm.hpp"
+#include "parallel/decomposition.hpp"
+
+namespace swell::parallel {
+namespace {
+
+template <int D>
+ParticleSet<D> random_set(std::size_t n, unsigned seed, bool optional) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto vec = [&] {
+    Vec<D> v;
+    for (int d = 0; d < D; ++d) v[d] = u(rng);
+    return v;
+  };
+  ParticleSet<D> ps;
+  for (std::size_t i = 0; i < n; ++i)
+    ps.add(vec(), vec(), 1000.0 + u(rng), 0.1 + 0.01 * u(rng),
+           i % 3 ? Role::Fluid : Role::MovingWall, static_cast<std::uint16_t>(i % 7));
+  for (std::size_t i = 0; i < n; ++i) ps.vel_prev[i] = vec(), ps.rho_prev[i] = 999.0 + u(rng);
+  if (optional) {
+    std::vector<Vec<D>> ref(n), nrm(n);
+    for (std::size_t i = 0; i < n; ++i) ref[i] = vec(), nrm[i] = vec();
+    ps.enable("pos_ref", ref);
+    ps.enable("normal", nrm);
+  }
+  return ps;
+}
+
+template <int D>
+void round_trip(bool optional) {
+  const ParticleSet<D> a = random_set<D>(50, 7, optional);
+  ParticleSet<D> b = random_set<D>(50, 8, optional);
+  const std::size_t rec = record_bytes(a);
+  // pos, vel, vel_prev (V); rho, rho_prev, mass (double); role, body, id; + pos_ref, normal.
+  const std::size_t expect = (optional ? 5 : 3) * sizeof(Vec<D>) + 3 * sizeof(double) +
+                             sizeof(Role) + sizeof(std::uint16_t) + sizeof(std::uint32_t);
+  EXPECT_EQ(rec, expect);
+  std::vector<std::byte> buf(rec);
+  for (std::size_t i = 0; i < a.total(); ++i) {
+    pack(a, i, buf.data());
+    unpack(b, a.total() - 1 - i, buf.data());
+  }
+  for (std::size_t i = 0; i < a.total(); ++i) {
+    const std::size_t j = a.total() - 1 - i;
+    EXPECT_EQ(0, std::memcmp(&a.pos[i], &b.pos[j], sizeof(Vec<D>)));
+    EXPECT_EQ(0, std::memcmp(&a.vel_prev[i], &b.vel_prev[j], sizeof(Vec<D>)));
+    EXPECT_EQ(0, std::memcmp(&a.rho_prev[i], &b.rho_prev[j], sizeof(double)));
+    EXPECT_EQ(a.role[i], b.role[j]);
+    EXPECT_EQ(a.body[i], b.body[j]);
+    EXPECT_EQ(a.id[i], b.id[j]);
+    if (optional) {
+      EXPECT_EQ(a.pos_ref[i], b.pos_ref[j]);
+      EXPECT_EQ(a.normal[i], b.normal[j]);
+    }
+  }
+}
+
+TEST(ParallelRecord, RoundTripIsExact2D) {
+  round_trip<2>(false);
+  round_trip<2>(true);
+}
+TEST(ParallelRecord, RoundTripIsExact3D) {
+  round_trip<3>(false);
+  round_trip<3>(true);
+}
+
+TEST(ParallelSlabs, OwnerFollowsTheBounds) {
+  const Slabs s = even_slabs(1, 0.0, 1.0, 4);
+  EXPECT_EQ(s.size(), 4);
+  EXPECT_EQ(s.owner(-5.0), 0);  // beyond the domain: the end slabs (the sort excludes it)
+  EXPECT_EQ(s.owner(0.1), 0);
+  EXPECT_EQ(s.owner(0.25), 1);  // a bound belongs to the slab above it
+  EXPECT_EQ(s.owner(0.6), 2);
+  EXPECT_EQ(s.owner(0.99), 3);
+  EXPECT_EQ(s.owner(1e9), 3);
+  EXPECT_EQ(longest_axis<3>(Vec<3>(0, 0, 0), Vec<3>(1, 3, 2)), 1);
+}
+
+TEST(ParallelComm, OneRankIsTheIdentity) {
+  const Comm c = Comm::self();
+  EXPECT_EQ(c.rank(), 0);
+  EXPECT_EQ(c.size(), 1);
+  EXPECT_EQ(c.min(2.5), 2.5);
+  EXPECT_EQ(c.sum(std::uint64_t{7}), 7u);
+  std::vector<std::byte> send{std::byte{1}, std::byte{2}}, recv;
+  std::vector<int> count{2}, rc, rd;
+  c.alltoallv(send, count, recv, rc, rd);
+  EXPECT_EQ(recv, send);
+  // Without mpirun the world is one rank too.
+  EXPECT_EQ(Comm::world().size(), 1);
+}
+
+TEST(ParallelMigrate, OneRankChangesNothing) {
+  ParticleSet<2> ps = random_set<2>(40, 3, true);
+  ps.n_active -= 4;  // four excluded particles at the end
+  const ParticleSet<2> before = ps;
+  MigrationBuffers buf;
+  migrate(ps, even_slabs(0, -1.0, 1.0, 1), Comm::self(), buf);
+  EXPECT_EQ(buf.sent, 0u);
+  EXPECT_EQ(ps.n_active, before.n_active);
+  EXPECT_EQ(ps.pos, before.pos);
+  EXPECT_EQ(ps.id, before.id);
+  EXPECT_EQ(ps.pos_ref, before.pos_ref);
+  // The minimum width is checked before anything else.
+  EXPECT_THROW(balanced_slabs(ps, 0, 0.0, 0.05, 0.1, Comm::self()), std::invalid_argument);
+  const Slabs one = balanced_slabs(ps, 0, -1.0, 1.0, 0.1, Comm::self());
+  ASSERT_EQ(one.lo.size(), 2u);
+  EXPECT_EQ(one.lo[0], -1.0);
+  EXPECT_EQ(one.lo[1], 1.0);
+  EXPECT_EQ(imbalance(ps, Comm::self()), 1.0);
+}
+
+}  // namespace
+}  // namespace swell::parallel
