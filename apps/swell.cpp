@@ -64,8 +64,6 @@ int main(int argc, char** argv) {
   // (ulimit -f) makes writes fail with EFBIG, reported like a full disk, instead of killing.
   swell::hdf5_no_atexit();
   std::signal(SIGXFSZ, SIG_IGN);
-  // MPI, only when started by mpirun (parallel/comm.hpp).
-  swell::parallel::Environment mpi(argc, argv);
 
   CLI::App app{"Swell: weakly-compressible SPH for coastal and hydraulic engineering"};
   app.require_subcommand(1);
@@ -265,7 +263,7 @@ int main(int argc, char** argv) {
     if (*run) {
       // The decomposition (parallel/) is not wired into the time loop yet: N ranks would
       // each run the whole case into the same folder. Refused before anything is written.
-      if (const int ranks = swell::parallel::Comm::world().size(); ranks > 1)
+      if (const int ranks = swell::parallel::launcher_world_size(); ranks > 1)
         throw std::invalid_argument(
             "swell run: started on " + std::to_string(ranks) +
             " MPI ranks, but multi-rank runs are not implemented yet (the slab decomposition "

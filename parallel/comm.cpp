@@ -25,6 +25,15 @@ bool launched_by_mpirun() {
   return false;
 }
 
+int launcher_world_size() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* s = std::getenv(v)) {
+      const int n = std::atoi(s);
+      if (n > 0) return n;
+    }
+  return 1;
+}
+
 Comm Comm::world() {
   Comm c;
 #ifdef SWELL_HAVE_MPI

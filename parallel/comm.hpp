@@ -68,5 +68,8 @@ class Environment {
 bool have_mpi();
 // Whether this process was started by an MPI launcher (see Environment).
 bool launched_by_mpirun();
+// The number of ranks the launcher started (OMPI_COMM_WORLD_SIZE or PMI_SIZE), 1 without
+// one: known without MPI, so a single-rank build can refuse a multi-rank launch.
+int launcher_world_size();
 
 }  // namespace swell::parallel
