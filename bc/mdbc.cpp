@@ -24,7 +24,7 @@ void MdbcBoundary<D>::before_forces(StepState<D>& s) {
   with_kernel<D>(s.params.kernel, s.params.h, [&](const auto& kernel) {
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : corrected, shepard, dry)
     for (long i = 0; i < n; ++i) {
-      if (is_fluid(ps.role[i])) continue;
+      if (is_fluid(ps.role[i]) || dbc_wall(ps, static_cast<std::size_t>(i))) continue;
       const Vec<D> xg = ps.pos[i] + 2.0 * ps.normal[i];
       GhostValue<D> g;
       if (grid.inside_domain(xg) && grid.fluid_near(grid.cell_index(xg)))
@@ -73,10 +73,20 @@ void MdbcBoundary<D>::after_forces(StepState<D>& s) {
   const std::size_t n = ps.size();
   const bool slip = slip_ != MdbcSlip::Wall;
   for (std::size_t i = 0; i < n; ++i) {
-    if (is_fluid(ps.role[i])) continue;
+    if (is_fluid(ps.role[i]) || dbc_wall(ps, i)) continue;
     s.forces.drho[i] = 0.0;
     if (slip) ps.vel[i] = body_vel_[i];
   }
+}
+
+template <int D>
+void MdbcBoundary<D>::finish_density(StepState<D>& s) {
+  if (dbc_bodies_.empty()) return;
+  ParticleSet<D>& ps = s.particles;
+  const double rho0 = s.params.rho0;
+  const std::size_t n = ps.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (is_wall(ps.role[i]) && dbc_wall(ps, i) && ps.rho[i] < rho0) ps.rho[i] = rho0;
 }
 
 template class MdbcBoundary<2>;

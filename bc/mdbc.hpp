@@ -96,7 +96,10 @@ template <int D>
 class MdbcBoundary final : public BoundaryModel<D> {
  public:
   using Selection = WallsSeeFluid;
-  MdbcBoundary(MdbcSlip slip, double det_min) : slip_(slip), det_min_(det_min) {}
+  // dbc_bodies[b] != 0: body b's walls are DBC walls (continuity, the rho0 floor, the body's
+  // velocity), as in DbcBoundary; the others get their density from the ghost nodes.
+  MdbcBoundary(MdbcSlip slip, double det_min, std::vector<std::uint8_t> dbc_bodies = {})
+      : slip_(slip), det_min_(det_min), dbc_bodies_(std::move(dbc_bodies)) {}
   std::string name() const override { return "mdbc"; }
   // Wall densities (and, without the default slip mode, velocities) from the ghost nodes.
   void before_forces(StepState<D>& s) override;
@@ -104,16 +107,26 @@ class MdbcBoundary final : public BoundaryModel<D> {
   void forces(StepState<D>& s) override;
   // Walls' drho/dt = 0; wall velocities back to their body's.
   void after_forces(StepState<D>& s) override;
+  // DBC bodies' walls: the density floor rho0 (as DbcBoundary).
+  void finish_density(StepState<D>& s) override;
 
   // The checkpoint records that its walls were mDBC walls (a DBC checkpoint has no normals).
   void save(std::map<std::string, double>& out) const override {
     out["slip"] = static_cast<double>(slip_);
+    for (std::size_t b = 0; b < dbc_bodies_.size(); ++b)
+      if (dbc_bodies_[b]) out["dbc_body." + std::to_string(b)] = 1.0;
   }
   void restore(const std::map<std::string, double>& in) override {
     if (in.find("slip") == in.end())
       throw std::invalid_argument(
           "checkpoint: written by a run with DBC walls, but the case asks for mDBC "
           "(physics.boundary); restart with the case the run was started with");
+    for (std::size_t b = 0; b < dbc_bodies_.size(); ++b)
+      if ((in.count("dbc_body." + std::to_string(b)) != 0) != (dbc_bodies_[b] != 0))
+        throw std::invalid_argument(
+            "checkpoint: body " + std::to_string(b) +
+            " had another wall model (bodies[].boundary) in the run that wrote it; restart "
+            "with the case the run was started with");
   }
 
   // Wall particles per mode in the last evaluation (for tests and the run summary).
@@ -125,13 +138,18 @@ class MdbcBoundary final : public BoundaryModel<D> {
  private:
   MdbcSlip slip_;
   double det_min_;
+  std::vector<std::uint8_t> dbc_bodies_;
+  bool dbc_wall(const ParticleSet<D>& ps, std::size_t i) const {
+    return ps.body[i] < dbc_bodies_.size() && dbc_bodies_[ps.body[i]] != 0;
+  }
   Counts counts_;
   std::vector<Vec<D>> body_vel_;  // wall velocities while the forces see the slip velocity
 };
 
 template <int D>
-std::unique_ptr<BoundaryModel<D>> make_mdbc(MdbcSlip slip, double det_min) {
-  return std::make_unique<MdbcBoundary<D>>(slip, det_min);
+std::unique_ptr<BoundaryModel<D>> make_mdbc(MdbcSlip slip, double det_min,
+                                            std::vector<std::uint8_t> dbc_bodies = {}) {
+  return std::make_unique<MdbcBoundary<D>>(slip, det_min, std::move(dbc_bodies));
 }
 
 extern template class MdbcBoundary<2>;

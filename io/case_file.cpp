@@ -699,6 +699,11 @@ void CaseReader::read_wall_options(const YAML::Node& node, const std::string& pa
     expect(body.layers >= 1, *v, child(path, "layers"), "an integer >= 1");
   }
   if (auto v = find(node, "open")) body.open = read_open_faces(*v, child(path, "open"));
+  if (auto v = find(node, "boundary")) {
+    const std::string m =
+        choice(*v, child(path, "boundary"), case_schema::choices("bodies[]", "boundary"));
+    body.boundary = m == "mdbc" ? BoundaryType::Mdbc : BoundaryType::Dbc;
+  }
   if (auto v = find(node, "motion"))
     body.motion = read_motion(*this, *v, child(path, "motion"),
                               std::filesystem::path(file_).parent_path().string(), g_, dp_);

@@ -213,6 +213,8 @@ const std::vector<Key>& key_table() {
     {"bodies[]", "open", "boundary", "list of faces", "none", "", "xmin xmax ymin ymax (zmin zmax in 3D)",
      "faces of the shape's box left without walls (an open tank top)"},
     {"bodies[]", "motion", "boundary", "none | map", "none", "", "", "prescribed motion (bodies[].motion.*)"},
+    {"bodies[]", "boundary", "boundary", "choice", "physics.boundary.model", "", "dbc | mdbc",
+     "this body's wall model (e.g. mDBC on the structure whose loads matter, DBC elsewhere)"},
 
     {"bodies[].fill", "below", "", "number", "required", "m", "", "level (vertical coordinate) the fill reaches"},
     {"bodies[].fill", "inside", "", "name", "required", "", "a boundary body with walls: inside",

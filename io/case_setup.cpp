@@ -185,13 +185,25 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
                       fluid ? Role::Fluid : Role::FixedWall, static_cast<std::uint16_t>(b));
   }
 
-  // mDBC: each wall particle's vector to its wall surface, from its body's geometry.
-  if (spec.boundary == BoundaryType::Mdbc) {
+  // The wall model per body (bodies[].boundary, else physics.boundary.model). With any mDBC
+  // body the run uses the mDBC module, which treats the DBC bodies' walls as DBC does.
+  s.dbc_bodies.assign(spec.bodies.size(), 0);
+  bool any_mdbc = false;
+  for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+    if (spec.bodies[b].kind == BodySpec::Kind::Fluid) continue;
+    const bool mdbc = spec.bodies[b].boundary.value_or(spec.boundary) == BoundaryType::Mdbc;
+    s.dbc_bodies[b] = !mdbc;
+    any_mdbc = any_mdbc || mdbc;
+  }
+  s.params.boundary = any_mdbc ? BoundaryType::Mdbc : BoundaryType::Dbc;
+  // mDBC: each wall particle's vector to its wall surface, from its body's geometry (zero on
+  // fluid and on the DBC bodies' walls).
+  if (any_mdbc) {
     std::vector<Vec<D>> normals;
     normals.reserve(total);
     for (std::size_t b = 0; b < filled.size(); ++b) {
       const auto& fb = filled[b];
-      if (fb.report.fluid) {
+      if (fb.report.fluid || s.dbc_bodies[b]) {
         normals.resize(normals.size() + fb.points.size(), Vec<D>::Zero());
         continue;
       }
@@ -517,7 +529,7 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
   if (setup.settling) hooks.push_back(std::make_unique<Settling<D>>(*setup.settling));
   std::unique_ptr<BoundaryModel<D>> wall =
       setup.params.boundary == BoundaryType::Mdbc
-          ? make_mdbc<D>(setup.params.mdbc_slip, setup.params.mdbc_det_min)
+          ? make_mdbc<D>(setup.params.mdbc_slip, setup.params.mdbc_det_min, setup.dbc_bodies)
           : make_dbc<D>();
   return Simulation<D>(setup.params, std::move(particles), std::move(wall), std::move(hooks));
 }

@@ -46,6 +46,9 @@ struct CaseSetup {
   // solid, fluid outside every tank), one line each, for the run header and `swell fill`.
   std::vector<std::string> warnings;
   bool default_domain = true;  // the domain was computed (README "Domain"), not given
+  // Per body (index = body id): 1 for a boundary body with DBC walls in a run whose wall
+  // module is mDBC (bodies[].boundary), else 0.
+  std::vector<std::uint8_t> dbc_bodies;
 };
 
 // The memory a run of about `particles` particles needs (setup and time loop together), and

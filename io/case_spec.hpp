@@ -41,6 +41,8 @@ struct BodySpec {
   std::vector<std::string> open;
   // Boundary bodies: prescribed motion (bc/motion.hpp); type None keeps the body fixed.
   MotionSpec motion;
+  // Boundary bodies: this body's wall model; unset: the case's physics.boundary.model.
+  std::optional<BoundaryType> boundary;
   int line = 0;  // line in the case file, for messages
 };
 

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 #include "apps/case_runner.hpp"
 #include "bc/mdbc.hpp"
@@ -561,6 +562,118 @@ TEST(MdbcCase, BadBoundaryKeysAreErrors) {
   EXPECT_NE(err("{model: dbc, slip: noslip}").find("unknown key"), std::string::npos);
   EXPECT_NE(err("{model: mdbc, det_min: 2}").find("a number in (0, 1)"), std::string::npos);
   EXPECT_EQ(err("{model: mdbc, slip: freeslip, det_min: 0.01}"), "");
+}
+
+// bodies[].boundary: a tank with a column standing in it, the tank's and the column's wall
+// model set per body.
+std::string tank_with_column(const std::string& physics, const std::string& tank,
+                             const std::string& column) {
+  std::ostringstream s;
+  s << "name: per_body\ndim: 2\ndp: 0.005\ntime: {end: 0.02}\nphysics: {boundary: " << physics
+    << "}\nbodies:\n"
+    << "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.3, 0.2]}}, "
+       "layers: 3, open: [ymax]"
+    << tank << "}\n"
+    << "  - {name: column, kind: boundary, walls: outside, layers: 2, shape: {box: {min: [0.2, "
+       "0], max: [0.24, 0.15]}}"
+    << column << "}\n"
+    << "  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.1, 0.12]}}}\n"
+    << "output: {every: 0.01, vtk: false, hdf5: true}\n";
+  return s.str();
+}
+
+Simulation<2> per_body_run(const std::string& text, int steps) {
+  CaseSetup<2> setup = setup_case<2>(parse_case_text(text, "per_body.yaml"));
+  Simulation<2> sim = make_simulation<2>(setup, std::move(setup.particles));
+  for (int k = 0; k < steps; ++k) sim.step();
+  return sim;
+}
+
+// The mDBC module with every body's walls set to DBC is the DBC run, bit for bit (same pair
+// loop, the same density floor, no ghost nodes).
+TEST(MdbcPerBody, EveryBodyDbcIsTheDbcRunBitwise) {
+  const Simulation<2> dbc = per_body_run(tank_with_column("{model: dbc}", "", ""), 60);
+  const Simulation<2> mixed =
+      per_body_run(tank_with_column("{model: mdbc}", ", boundary: dbc", ", boundary: dbc"), 60);
+  const auto& a = dbc.particles();
+  const auto& b = mixed.particles();
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(a.pos, b.pos);
+  EXPECT_EQ(a.vel, b.vel);
+  EXPECT_EQ(a.rho, b.rho);
+}
+
+// A DBC tank with an mDBC column: only the column's walls carry normals and take their density
+// from the ghost nodes (drho/dt = 0 after the forces); the tank's wetted walls integrate
+// continuity (drho/dt != 0) and keep the rho0 floor. Both orders of the defaults give the same.
+TEST(MdbcPerBody, MixedModelsTreatEachBodyItsOwnWay) {
+  for (const auto& [physics, tank, column] :
+       {std::tuple<std::string, std::string, std::string>{"{model: dbc}", "", ", boundary: mdbc"},
+        {"{model: mdbc}", ", boundary: dbc", ""}}) {
+    const std::string text = tank_with_column(physics, tank, column);
+    CaseSetup<2> setup = setup_case<2>(parse_case_text(text, "per_body.yaml"));
+    EXPECT_EQ(setup.params.boundary, BoundaryType::Mdbc);
+    ASSERT_EQ(setup.dbc_bodies.size(), 3u);
+    EXPECT_EQ(setup.dbc_bodies[0], 1);  // tank
+    EXPECT_EQ(setup.dbc_bodies[1], 0);  // column
+    Simulation<2> sim = make_simulation<2>(setup, std::move(setup.particles));
+    // Let the water reach the column (0.1 m away; the front runs at ~2 sqrt(g H) = 2.2 m/s).
+    while (sim.time() < 0.08) sim.step();
+    const auto& ps = sim.particles();
+    const auto& drho = sim.density_rate();
+    std::size_t tank_wet = 0, column_walls = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (is_fluid(ps.role[i])) continue;
+      if (ps.body[i] == 0) {
+        EXPECT_EQ(ps.normal[i], Vec<2>::Zero()) << "a DBC wall has no normal";
+        EXPECT_GE(ps.rho[i], 1000.0);
+        if (drho[i] != 0.0) ++tank_wet;
+      } else {
+        ++column_walls;
+        EXPECT_GT(ps.normal[i].norm(), 0.0) << "an mDBC wall has its normal";
+        EXPECT_EQ(drho[i], 0.0);
+      }
+    }
+    EXPECT_GT(tank_wet, 20u) << physics;
+    EXPECT_GT(column_walls, 20u);
+  }
+}
+
+// A checkpoint remembers which bodies had DBC walls: restarting with another choice is refused.
+TEST(MdbcPerBody, RestartWithAnotherPerBodyModelIsRefused) {
+  const fs::path d = fs::temp_directory_path() / "swell_mdbc_per_body";
+  fs::remove_all(d);
+  run_dir(tank_with_column("{model: mdbc}", ", boundary: dbc", ""), d, false, 1);
+  try {
+    std::string longer = tank_with_column("{model: mdbc}", "", "");
+    longer.replace(longer.find("end: 0.02"), 9, "end: 0.04");
+    run_dir(longer, d, true, 1);
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("another wall model"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MdbcPerBody, KeyErrors) {
+  auto err = [](const std::string& body_extra, const std::string& fluid_extra) {
+    const std::string text =
+        "dim: 2\ndp: 0.01\ntime: {end: 0.1}\nbodies:\n"
+        "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [0.4, 0.3]}}" +
+        body_extra +
+        "}\n"
+        "  - {name: water, kind: fluid, shape: {box: {min: [0, 0], max: [0.4, 0.2]}}" +
+        fluid_extra + "}\n";
+    try {
+      parse_case_text(text, "b.yaml");
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(err(", boundary: mdbc", ""), "");
+  EXPECT_NE(err(", boundary: mbdc", "").find("expected one of: dbc, mdbc"), std::string::npos);
+  EXPECT_NE(err("", ", boundary: mdbc").find("only boundary bodies take 'boundary'"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -160,6 +160,23 @@ double mls_at(const ParticleSet<D>& ps, const Kernel& kernel, Near&& near, const
   return Mm.ldlt().solve(rhs)(0);
 }
 
+// Calls fn(b, r_ab, r_ab^2) for every particle b != a that `near` visits, `use(b)` accepts and
+// that lies within the kernel support of a (r_ab = x_a - x_b, never zero): the neighbour loop
+// the per-particle operators below share.
+template <int D, class Kernel, class Near, class Use, class Fn>
+void for_each_support_neighbour(const ParticleSet<D>& ps, const Kernel& kernel, Near&& near,
+                                std::uint32_t a, Use&& use, Fn&& fn) {
+  const double s2 = kernel.support() * kernel.support();
+  const Vec<D> xa = ps.pos[a];
+  near(xa, [&](std::uint32_t b) {
+    if (b == a || !use(b)) return;
+    const Vec<D> r = xa - ps.pos[b];  // r_ab
+    const double r2 = r.squaredNorm();
+    if (!(r2 < s2) || !(r2 > 0.0)) return;
+    fn(b, r, r2);
+  });
+}
+
 // The kernel-gradient correction matrix of particle a (over the particles `near` visits and
 // `use(b)` accepts, b != a), and the determinant of the moment matrix it inverts. Where
 // |det| < det_min the identity (no correction).
@@ -169,16 +186,11 @@ Eigen::Matrix<double, D, D> kgc_matrix(const ParticleSet<D>& ps, const Kernel& k
                                        double* det_out = nullptr) {
   using Mat = Eigen::Matrix<double, D, D>;
   Mat Mm = Mat::Zero();
-  const double s2 = kernel.support() * kernel.support();
-  const Vec<D> xa = ps.pos[a];
-  near(xa, [&](std::uint32_t b) {
-    if (b == a || !use(b)) return;
-    const Vec<D> r = xa - ps.pos[b];  // r_ab
-    const double r2 = r.squaredNorm();
-    if (!(r2 < s2) || !(r2 > 0.0)) return;
-    const Vec<D> gw = r * kernel.f(std::sqrt(r2));        // grad_a W_ab
-    Mm -= (ps.mass[b] / ps.rho[b]) * gw * r.transpose();  // V_b gradW_ab (x_b - x_a)^T
-  });
+  for_each_support_neighbour(
+      ps, kernel, near, a, use, [&](std::uint32_t b, const Vec<D>& r, double r2) {
+        const Vec<D> gw = r * kernel.f(std::sqrt(r2));        // grad_a W_ab
+        Mm -= (ps.mass[b] / ps.rho[b]) * gw * r.transpose();  // V_b gradW_ab (x_b - x_a)^T
+      });
   const double det = Mm.determinant();
   if (det_out) *det_out = det;
   if (!(std::abs(det) >= det_min)) return Mat::Identity();
@@ -191,16 +203,12 @@ template <int D, class Kernel, class Near, class F>
 Vec<D> gradient_at_particle(const ParticleSet<D>& ps, const Kernel& kernel, Near&& near,
                             std::uint32_t a, F&& f, const Eigen::Matrix<double, D, D>& L) {
   Vec<D> g = Vec<D>::Zero();
-  const double s2 = kernel.support() * kernel.support();
-  const Vec<D> xa = ps.pos[a];
   const double fa = f(a);
-  near(xa, [&](std::uint32_t b) {
-    if (b == a || ps.role[b] != Role::Fluid) return;
-    const Vec<D> r = xa - ps.pos[b];
-    const double r2 = r.squaredNorm();
-    if (!(r2 < s2) || !(r2 > 0.0)) return;
-    g += ((ps.mass[b] / ps.rho[b]) * (f(b) - fa) * kernel.f(std::sqrt(r2))) * r;
-  });
+  const auto fluid = [&](std::uint32_t b) { return ps.role[b] == Role::Fluid; };
+  for_each_support_neighbour(
+      ps, kernel, near, a, fluid, [&](std::uint32_t b, const Vec<D>& r, double r2) {
+        g += ((ps.mass[b] / ps.rho[b]) * (f(b) - fa) * kernel.f(std::sqrt(r2))) * r;
+      });
   return L * g;
 }
 
@@ -211,18 +219,14 @@ template <int D, class Kernel, class Near, class F>
 double laplacian_at_particle(const ParticleSet<D>& ps, const Kernel& kernel, Near&& near,
                              std::uint32_t a, F&& f) {
   double lap = 0.0;
-  const double s2 = kernel.support() * kernel.support();
   const double eta2 = 0.01 * kernel.h * kernel.h;
-  const Vec<D> xa = ps.pos[a];
   const double fa = f(a);
-  near(xa, [&](std::uint32_t b) {
-    if (b == a || ps.role[b] != Role::Fluid) return;
-    const Vec<D> r = xa - ps.pos[b];
-    const double r2 = r.squaredNorm();
-    if (!(r2 < s2) || !(r2 > 0.0)) return;
-    const double r_dot_gw = r2 * kernel.f(std::sqrt(r2));
-    lap += 2.0 * (ps.mass[b] / ps.rho[b]) * (fa - f(b)) * r_dot_gw / (r2 + eta2);
-  });
+  const auto fluid = [&](std::uint32_t b) { return ps.role[b] == Role::Fluid; };
+  for_each_support_neighbour(
+      ps, kernel, near, a, fluid, [&](std::uint32_t b, const Vec<D>&, double r2) {
+        const double r_dot_gw = r2 * kernel.f(std::sqrt(r2));
+        lap += 2.0 * (ps.mass[b] / ps.rho[b]) * (fa - f(b)) * r_dot_gw / (r2 + eta2);
+      });
   return lap;
 }
 

@@ -63,6 +63,9 @@ class Simulation {
   // Force per unit mass exerted by the fluid on each active wall particle (fluid particles:
   // their acceleration) at the last evaluation. Valid between steps.
   const std::vector<Vec<D>>& acceleration() const { return f_.ace; }
+  // drho/dt of each active particle at the last evaluation, as the integrator used it (mDBC
+  // walls: 0). Valid between steps.
+  const std::vector<double>& density_rate() const { return f_.drho; }
 
   // Clock and counters for checkpoints; restore() continues a run from them. The particles
   // must be given to the constructor in the order they were saved.
