@@ -22,6 +22,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cstddef>
 #include <map>
 #include <memory>
@@ -99,7 +100,12 @@ class MdbcBoundary final : public BoundaryModel<D> {
   // dbc_bodies[b] != 0: body b's walls are DBC walls (continuity, the rho0 floor, the body's
   // velocity), as in DbcBoundary; the others get their density from the ghost nodes.
   MdbcBoundary(MdbcSlip slip, double det_min, std::vector<std::uint8_t> dbc_bodies = {})
-      : slip_(slip), det_min_(det_min), dbc_bodies_(std::move(dbc_bodies)) {}
+      : slip_(slip), det_min_(det_min), dbc_bodies_(std::move(dbc_bodies)) {
+    // All zeros (a pure mDBC case, as the case setup passes it) is no DBC body at all: the
+    // per-particle checks and the density-floor pass are then skipped.
+    if (std::none_of(dbc_bodies_.begin(), dbc_bodies_.end(), [](std::uint8_t d) { return d; }))
+      dbc_bodies_.clear();
+  }
   std::string name() const override { return "mdbc"; }
   // Wall densities (and, without the default slip mode, velocities) from the ghost nodes.
   void before_forces(StepState<D>& s) override;
@@ -121,12 +127,20 @@ class MdbcBoundary final : public BoundaryModel<D> {
       throw std::invalid_argument(
           "checkpoint: written by a run with DBC walls, but the case asks for mDBC "
           "(physics.boundary); restart with the case the run was started with");
+    // Every DBC body of the checkpoint must be one here, and the other way round.
+    std::size_t saved = 0;
+    for (auto it = in.lower_bound("dbc_body.");
+         it != in.end() && it->first.starts_with("dbc_body."); ++it)
+      ++saved;
+    std::size_t here = 0;
+    bool missing = false;
     for (std::size_t b = 0; b < dbc_bodies_.size(); ++b)
-      if ((in.count("dbc_body." + std::to_string(b)) != 0) != (dbc_bodies_[b] != 0))
-        throw std::invalid_argument(
-            "checkpoint: body " + std::to_string(b) +
-            " had another wall model (bodies[].boundary) in the run that wrote it; restart "
-            "with the case the run was started with");
+      if (dbc_bodies_[b])
+        ++here, missing = missing || in.count("dbc_body." + std::to_string(b)) == 0;
+    if (missing || saved != here)
+      throw std::invalid_argument(
+          "checkpoint: a body had another wall model (bodies[].boundary) in the run that wrote "
+          "it; restart with the case the run was started with");
   }
 
   // Wall particles per mode in the last evaluation (for tests and the run summary).
