@@ -228,7 +228,9 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
       ShiftingParams sp;
       sp.surface_threshold = pr.shift_surface_threshold;
       log << " (dr = -A h |v| dt grad C, A = " << pr.shift_coefficient
-          << ", free surface where div r < " << sp.threshold(D) << ")";
+          << ", free surface where div r < " << sp.threshold(D)
+          << ", near walls: " << shift_mode_name(pr.shift_mode)
+          << (pr.shift_correct_density ? ", density moved with the shift" : "") << ")";
     }
     log << "\n";
   }

@@ -57,6 +57,14 @@ const CLI::Validator kPositive(
     },
     "X>0");
 
+// `--set key.path=value`, repeatable, one edit per occurrence (io/case_file.hpp).
+void add_set_option(CLI::App* cmd, std::vector<std::string>& sets) {
+  cmd->add_option("--set", sets,
+                  "edit the case: key.path=value (YAML value; repeatable), e.g. "
+                  "--set physics.boundary.model=mdbc --set bodies.2.boundary=dbc")
+      ->allow_extra_args(false);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -77,6 +85,8 @@ int main(int argc, char** argv) {
   run->add_option("-o,--out", out_dir, "output folder (default: out/<case name>)");
   run->add_option("-t,--threads", threads, "OpenMP threads (default: all cores)")->check(kCount);
   run->add_flag("-q,--quiet", quiet, "no progress line");
+  std::vector<std::string> run_sets;
+  add_set_option(run, run_sets);
   std::string restart_dir;
   bool overwrite = false;
   auto* restart_opt = run->add_option(
@@ -90,6 +100,8 @@ int main(int argc, char** argv) {
   auto* fill = app.add_subcommand(
       "fill", "build a case's particles as `run` would, write <name>_fill.vtp and report");
   fill->add_option("case", fill_case, "case file (YAML)")->required();
+  std::vector<std::string> fill_sets;
+  add_set_option(fill, fill_sets);
   fill->add_option("-o,--out", fill_out, "output folder (default: out/<case name>)");
   fill->add_option("-t,--threads", fill_threads, "OpenMP threads (default: all cores)")
       ->check(kCount);
@@ -141,6 +153,7 @@ int main(int argc, char** argv) {
       "validate", "run/compare a validation case (validation/NAME/validation.yaml) and report");
   validate->add_option("name", val.name, "validation case name, folder or manifest file")
       ->required();
+  add_set_option(validate, val.sets);
   validate->add_flag("--run-sph", val.run_sph, "run the SPH case (else: committed results)");
   validate->add_flag("--run-foam", val.run_foam, "run interFoam (else: committed results)");
   validate->add_option("--resolution", val_res, "SPH dp list d1,d2 [m] (default: manifest's)");
@@ -167,6 +180,8 @@ int main(int argc, char** argv) {
   auto* foam = app.add_subcommand(
       "foam", "write an OpenFOAM interFoam case of a case file; --run runs it and converts gauges");
   foam->add_option("case", foam_case, "case file (YAML)")->required();
+  std::vector<std::string> foam_sets;
+  add_set_option(foam, foam_sets);
   foam->add_option("-o,--out", foam_opt.out_dir, "case folder (default: out/<case name>_foam)");
   auto* foam_cell =
       foam->add_option("--cell", foam_opt.cell_size, "cell size [m]")->check(kPositive);
@@ -269,7 +284,7 @@ int main(int argc, char** argv) {
             " MPI ranks, but multi-rank runs are not implemented yet (the slab decomposition "
             "in parallel/ is built and tested, the time loop does not use it); run one rank, "
             "with OpenMP threads (-t N)");
-      const swell::CaseSpec spec = swell::load_case_file(case_path);
+      const swell::CaseSpec spec = swell::load_case_file(case_path, run_sets);
       swell::RunOptions opt;
       if (!restart_dir.empty()) {
         if (!out_dir.empty() && out_dir != restart_dir)
@@ -285,7 +300,7 @@ int main(int argc, char** argv) {
       swell::install_stop_handlers();
       swell::run_case(spec, opt);
     } else if (*fill) {
-      const swell::CaseSpec spec = swell::load_case_file(fill_case);
+      const swell::CaseSpec spec = swell::load_case_file(fill_case, fill_sets);
       swell::FillCommandOptions opt;
       opt.out_dir = fill_out;
       opt.threads = fill_threads;
@@ -346,7 +361,7 @@ int main(int argc, char** argv) {
         bench_opt.sweep_dp = swell::parse_number_list(bench_sweep_dp, "--sweep-dp");
       return swell::run_bench(bench_opt, std::cout);
     } else if (*foam) {
-      const swell::CaseSpec spec = swell::load_case_file(foam_case);
+      const swell::CaseSpec spec = swell::load_case_file(foam_case, foam_sets);
       swell::run_foam_command(spec, foam_opt, std::cout);
     } else if (waves_analyse.chosen()) {  // swell waves analyse
       waves_analyse.run(std::cout);

@@ -385,7 +385,8 @@ bool target_met(const ManifestTarget& t, double v) {
 }  // namespace
 
 ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
-  const Manifest m = load_manifest(find_manifest(opt.name, opt.search_root));
+  Manifest m = load_manifest(find_manifest(opt.name, opt.search_root));
+  m.case_sets = opt.sets;
   // Nothing is written into an installed tree: committed results are updated in a checkout.
   if (opt.save_results && path_within(m.results_dir, installed_data_dir()))
     throw std::invalid_argument("--save-results would write into " + m.results_dir +

@@ -52,9 +52,10 @@ struct ValidateOptions {
   std::vector<double> cell_sizes;   // OpenFOAM cell sizes; default: the manifest's
   std::string out_dir;              // default: out/validate/<name>
   int threads = 0;
-  int np = 1;              // OpenFOAM processes
-  double end_time = -1.0;  // shorten runs (CI); < 0: the manifest's / case's
-  bool progress = true;    // SPH progress line on stderr
+  int np = 1;                     // OpenFOAM processes
+  double end_time = -1.0;         // shorten runs (CI); < 0: the manifest's / case's
+  bool progress = true;           // SPH progress line on stderr
+  std::vector<std::string> sets;  // --set key.path=value edits of the case (io/case_file.hpp)
 };
 
 struct ValidateSummary {

@@ -376,6 +376,10 @@ void CaseReader::read_shifting(const YAML::Node& node, const std::string& path,
         *v, child(path, "surface_threshold"), [dim](double t) { return t > 0.0 && t < dim; },
         "a number in (0, dim) (default 1.5 in 2D, 2.75 in 3D)");
   }
+  if (auto v = find(node, "correct_density"))
+    spec.shift_correct_density = boolean(*v, child(path, "correct_density"));
+  if (auto v = find(node, "mode"))
+    spec.shift_mode = model(*v, child(path, "mode"), kShiftModes, shift_mode_name);
 }
 
 // `boundary: {model: dbc}` or `{model: mdbc, slip: wall|noslip|freeslip, det_min: 1e-3}`.
@@ -854,6 +858,89 @@ CaseSpec load_case_file(const std::string& path) {
   content << in.rdbuf();
   if (in.bad()) throw CaseError(path, 0, "error while reading the case file");
   return parse_case_text(content.str(), path);
+}
+
+namespace {
+
+bool all_digits(const std::string& s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// Sets root[path...] = value for one `key.path=value` edit.
+void apply_case_set(YAML::Node& root, const std::string& set, const std::string& file) {
+  const auto fail = [&](const std::string& what) {
+    throw CaseError(file, 0, "--set " + set + ": " + what);
+  };
+  const auto eq = set.find('=');
+  if (eq == std::string::npos || eq == 0)
+    fail("expected key.path=value (e.g. physics.boundary.model=mdbc)");
+  const std::string path = set.substr(0, eq), text = set.substr(eq + 1);
+  if (text.find_first_not_of(" \t") == std::string::npos)
+    fail("no value after '=' (write a YAML value: mdbc, 0.004, {model: fickian}, [0, -9.81])");
+  std::vector<std::string> keys;
+  for (std::size_t start = 0;;) {
+    const auto dot = path.find('.', start);
+    keys.push_back(path.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+    if (keys.back().empty()) fail("an empty key in '" + path + "'");
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  YAML::Node value;
+  try {
+    value = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    fail("the value is not valid YAML: " + e.msg);
+  }
+  // Walk down, creating missing maps; list items by index.
+  std::vector<YAML::Node> chain{root};
+  std::string walked;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    YAML::Node parent = chain.back();
+    const std::string& k = keys[i];
+    const bool last = i + 1 == keys.size();
+    if (parent.IsSequence()) {
+      if (!all_digits(k) || k.size() > 9)
+        fail("'" + walked + "' is a list of " + std::to_string(parent.size()) +
+             " items: expected an item index from 0, got '" + k + "'");
+      const std::size_t idx = std::stoul(k);
+      if (last && idx == parent.size()) {
+        parent.push_back(value);  // the index after the last item appends one
+      } else if (idx >= parent.size()) {
+        fail("'" + walked + "' has " + std::to_string(parent.size()) + " items, no item " + k);
+      } else if (last) {
+        parent[idx] = value;
+      } else {
+        chain.push_back(parent[idx]);
+      }
+    } else if (parent.IsMap() || parent.IsNull() || !parent.IsDefined()) {
+      if (last) {
+        parent[k] = value;
+      } else {
+        chain.push_back(parent[k]);
+      }
+    } else {
+      fail("'" + walked + "' holds a value, not a map: it has no key '" + k + "'");
+    }
+    walked += (walked.empty() ? "" : ".") + k;
+  }
+}
+
+}  // namespace
+
+std::string edit_case_text(const std::string& text, const std::vector<std::string>& sets,
+                           const std::string& file_label) {
+  YAML::Node root = case_parse::parse_yaml(text, file_label);
+  if (!root.IsMap()) throw CaseError(file_label, 1, "the case file is not a map of keys");
+  for (const std::string& set : sets) apply_case_set(root, set, file_label);
+  YAML::Emitter out;
+  out << root;
+  return std::string(out.c_str()) + "\n";
+}
+
+CaseSpec load_case_file(const std::string& path, const std::vector<std::string>& sets) {
+  CaseSpec spec = load_case_file(path);
+  if (sets.empty()) return spec;
+  return parse_case_text(edit_case_text(spec.text, sets, path), path);
 }
 
 }  // namespace swell

@@ -9,6 +9,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "io/case_spec.hpp"
 
@@ -33,6 +34,23 @@ class CaseError : public std::runtime_error {
 // Reads and parses the case file at `path`. CaseSpec::file is `path`, CaseSpec::text the file's
 // content. Throws CaseError.
 CaseSpec load_case_file(const std::string& path);
+
+// Reads the case file at `path` with command-line edits applied (`swell run --set`, as
+// DualSPHysics' command-line options and OpenFOAM's foamDictionary -set): each edit is
+// `key.path=value`, the path written as in the file with list items by index (`bodies.2.boundary`,
+// `physics.shifting.model`), the value YAML (`mdbc`, `{model: fickian, coefficient: 1}`,
+// `[0, -9.81]`). Missing maps on the path are created; the index one past a list's last item
+// appends an item (`gauges.4={name: S1, kind: pressure, ...}` on a list of 4 gauges); the edited
+// tree is then read by the ordinary reader, so every edit is checked like a hand-written key (line
+// numbers in its messages then refer to the edited text, as for `swell validate`'s edits).
+// CaseSpec::text is the edited text, so a checkpoint's case identity includes the edits. A
+// malformed edit is a CaseError naming the edit. No edits: load_case_file(path).
+CaseSpec load_case_file(const std::string& path, const std::vector<std::string>& sets);
+
+// Applies `sets` (as above) to case-file YAML text and returns the edited text (emitted by
+// yaml-cpp: comments are dropped). `file_label` names the case in errors. Throws CaseError.
+std::string edit_case_text(const std::string& text, const std::vector<std::string>& sets,
+                           const std::string& file_label);
 
 // Parses case file content held in memory. `file_label` names it in error messages, is stored
 // in CaseSpec::file, and its stem is the default case name. Throws CaseError.

@@ -147,6 +147,11 @@ const std::vector<Key>& key_table() {
      "A in dr = -A h |v| dt grad C"},
     {"physics.shifting", "surface_threshold", "fickian", "number", "1.5 (2D), 2.75 (3D)", "", "(0, dim)",
      "free surface where div r is below it: tangential shift only"},
+    {"physics.shifting", "correct_density", "fickian", "bool", "false", "", "true | false",
+     "move each shifted particle's density with it: rho += dr . grad rho (Lind et al. 2012)"},
+    {"physics.shifting", "mode", "fickian", "choice", "full", "", "full | nobound | nofixed",
+     "fluid particles near walls: shifted (full), not shifted with a wall particle within the "
+     "kernel support (nobound) or a fixed-wall particle (nofixed); DualSPHysics' ShiftMode"},
 
     // --- time ---
     {"time", "end", "", "number", "required", "s", "> 0", "end time of the run"},

@@ -156,6 +156,8 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   p.shepard_reinit = spec.shepard_reinit;
   p.shift_coefficient = spec.shift_coefficient;
   p.shift_surface_threshold = spec.shift_surface_threshold;
+  p.shift_correct_density = spec.shift_correct_density;
+  p.shift_mode = spec.shift_mode;
   p.dt_collapse_factor = spec.dt_collapse;
 
   // Motion laws (checked here: a bad CSV series or spec is a case error at the body's line).
@@ -519,6 +521,8 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
     ShiftingParams sp;
     sp.coefficient = setup.params.shift_coefficient;
     sp.surface_threshold = setup.params.shift_surface_threshold;
+    sp.correct_density = setup.params.shift_correct_density;
+    sp.mode = setup.params.shift_mode;
     hooks.push_back(std::make_unique<ShiftingHook<D>>(sp));
   }
   // Damping after shifting. Shifting moves positions and damping changes velocities, so neither

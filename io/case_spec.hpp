@@ -146,6 +146,8 @@ struct CaseSpec {
   int shepard_reinit = 0;
   double shift_coefficient = 2.0;
   double shift_surface_threshold = 0.0;
+  bool shift_correct_density = false;      // rho += dr . grad rho with each shift
+  ShiftMode shift_mode = ShiftMode::Full;  // near walls: full | nobound | nofixed
 
   // time
   double t_end = 0.0;

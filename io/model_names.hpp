@@ -22,6 +22,7 @@ inline constexpr std::array kIntegratorTypes{IntegratorType::Symplectic, Integra
 inline constexpr std::array kBoundaryTypes{BoundaryType::Dbc, BoundaryType::Mdbc};
 inline constexpr std::array kMdbcSlips{MdbcSlip::Wall, MdbcSlip::NoSlip, MdbcSlip::FreeSlip};
 inline constexpr std::array kShiftingModels{ShiftingModel::None, ShiftingModel::Fickian};
+inline constexpr std::array kShiftModes{ShiftMode::Full, ShiftMode::NoBound, ShiftMode::NoFixed};
 
 // The kernel type's own name (its kName: wendland, cubic, quintic, gaussian), the name
 // kernel_from_name() reads back.
@@ -92,6 +93,18 @@ inline const char* shifting_name(ShiftingModel m) {
       return "fickian";
   }
   return "shifting";
+}
+
+inline const char* shift_mode_name(ShiftMode m) {
+  switch (m) {
+    case ShiftMode::Full:
+      return "full";
+    case ShiftMode::NoBound:
+      return "nobound";
+    case ShiftMode::NoFixed:
+      return "nofixed";
+  }
+  return "mode";
 }
 
 }  // namespace swell

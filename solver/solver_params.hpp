@@ -20,6 +20,10 @@ enum class MdbcSlip { Wall, NoSlip, FreeSlip };
 // Particle shifting after each step (solver/physics/shifting.hpp): none, or Fickian (Lind et
 // al. 2012 with Skillen et al. 2013's coefficient, tangential only at the free surface).
 enum class ShiftingModel { None, Fickian };
+// Which fluid particles near walls are shifted (DualSPHysics' ShiftMode): every one (full), none
+// with a wall particle within the kernel support (nobound), none with a fixed-wall particle
+// there (nofixed: near moving walls such as paddles they are shifted).
+enum class ShiftMode : std::uint8_t { Full, NoBound, NoFixed };
 
 struct SolverParams {
   double dp = 0.0;
@@ -53,6 +57,8 @@ struct SolverParams {
   ShiftingModel shifting = ShiftingModel::None;
   double shift_coefficient = 2.0;        // A in dr = -A h |v| dt grad C
   double shift_surface_threshold = 0.0;  // div r below it: free surface (0: 1.5 in 2D, 2.75 in 3D)
+  bool shift_correct_density = false;    // rho += dr . grad rho with each shift
+  ShiftMode shift_mode = ShiftMode::Full;  // near walls: full | nobound | nofixed
   // Corrections (solver/time/correction_hooks.hpp), off by default.
   bool kernel_gradient_correction = false;
   double kgc_det_min = 0.1;  // below it the moment matrix counts as singular: no correction

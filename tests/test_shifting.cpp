@@ -177,6 +177,104 @@ TEST(ShiftingOperator, ParticlesAtRestAreNotShifted) {
   EXPECT_EQ(st.shifted, 0u);  // Skillen et al.'s D = A h |v| dt vanishes
 }
 
+// The modes near walls (DualSPHysics' ShiftMode): a disordered block resting on a fixed floor
+// and beside a moving wall. full shifts every moving fluid particle; nobound leaves exactly the
+// fluid particles with a wall particle within the kernel support where they are (and no other);
+// nofixed only those near the fixed floor.
+TEST(ShiftingOperator, ModesLeaveExactlyTheParticlesNearTheExcludedWalls) {
+  Fixture f;
+  ParticleSet<2> ps = block(20, 20, 0.2, 1.0);
+  for (int layer = 0; layer < 3; ++layer)  // a fixed floor under the block
+    for (int i = -3; i < 23; ++i)
+      ps.add(Vec<2>((i + 0.5) * kDp, -(layer + 0.5) * kDp), Vec<2>::Zero(), kRho0,
+             kRho0 * kDp * kDp, Role::FixedWall, 1);
+  for (int layer = 0; layer < 3; ++layer)  // a moving wall on its left
+    for (int j = 0; j < 20; ++j)
+      ps.add(Vec<2>(-(layer + 0.5) * kDp, (j + 0.5) * kDp), Vec<2>::Zero(), kRho0,
+             kRho0 * kDp * kDp, Role::MovingWall, 2);
+  f.grid.sort(ps);
+  const double support2 = f.kernel.support() * f.kernel.support();
+  std::vector<int> near_fixed(ps.size(), 0), near_moving(ps.size(), 0);
+  for (std::size_t a = 0; a < ps.size(); ++a)
+    for (std::size_t b = 0; b < ps.size(); ++b)
+      if ((ps.pos[a] - ps.pos[b]).squaredNorm() < support2) {
+        near_fixed[a] |= ps.role[b] == Role::FixedWall;
+        near_moving[a] |= ps.role[b] == Role::MovingWall;
+      }
+  const double dt = 1e-4;
+  ShiftingWork<2> full, nobound, nofixed;
+  const ShiftingStats s_full = compute_shifting<2>(ps, f.grid, f.kernel, f.params, kDp, dt, full);
+  ShiftingParams p = f.params;
+  p.mode = ShiftMode::NoBound;
+  const ShiftingStats s_nb = compute_shifting<2>(ps, f.grid, f.kernel, p, kDp, dt, nobound);
+  p.mode = ShiftMode::NoFixed;
+  const ShiftingStats s_nf = compute_shifting<2>(ps, f.grid, f.kernel, p, kDp, dt, nofixed);
+  std::size_t n_near_any = 0, n_near_fixed = 0, fluid = 0;
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    if (ps.role[a] != Role::Fluid) continue;
+    ++fluid;
+    const bool any = near_fixed[a] || near_moving[a];
+    n_near_any += any;
+    n_near_fixed += near_fixed[a] != 0;
+    ASSERT_GT(full.shift[a].norm(), 0.0) << a;  // disordered and moving: every one shifts
+    if (any)
+      EXPECT_EQ(nobound.shift[a].norm(), 0.0) << a;
+    else
+      EXPECT_GT(nobound.shift[a].norm(), 0.0) << a;
+    if (near_fixed[a])
+      EXPECT_EQ(nofixed.shift[a].norm(), 0.0) << a;
+    else
+      EXPECT_GT(nofixed.shift[a].norm(), 0.0) << a;
+  }
+  std::cout << "  modes: " << fluid << " fluid particles, " << n_near_any << " near a wall, "
+            << n_near_fixed << " near the fixed floor\n";
+  EXPECT_GT(n_near_fixed, 0u);
+  EXPECT_GT(n_near_any, n_near_fixed);
+  EXPECT_EQ(s_full.near_wall, 0u);
+  EXPECT_EQ(s_nb.near_wall, n_near_any);
+  EXPECT_EQ(s_nf.near_wall, n_near_fixed);
+}
+
+// correct_density moves each shifted particle's density with it (Lind et al. 2012, section
+// 3.3): on a linear density field, rho + dr . grad rho is the field at the new position to
+// round-off wherever the kernel-gradient correction holds (a full or one-sided support), while
+// without it the density stays the value of the old position.
+TEST(ShiftingOperator, DensityCorrectionFollowsALinearField) {
+  Fixture f;
+  ParticleSet<2> ps = block(24, 24, 0.2, 1.0);
+  const Vec<2> grad(40.0, -70.0);  // kg/m^4 (about the hydrostatic gradient rho0 g / c0^2 x 100)
+  const auto field = [&](const Vec<2>& x) { return kRho0 + grad.dot(x); };
+  for (std::size_t a = 0; a < ps.size(); ++a) ps.rho[a] = field(ps.pos[a]);
+  f.grid.sort(ps);
+  ShiftingParams p = f.params;
+  p.correct_density = true;
+  ShiftingWork<2> work;
+  const double dt = 0.05 * kDp;  // |v| dt = 0.05 dp: shifts of a few percent of dp
+  (void)compute_shifting<2>(ps, f.grid, f.kernel, p, kDp, dt, work);
+  double worst = 0.0, moved = 0.0;
+  std::size_t uncorrected = 0;
+  const auto near = [&](const Vec<2>& x, auto&& fn) { f.grid.for_each_candidate_near(x, fn); };
+  const auto fluid = [&](std::uint32_t) { return true; };
+  for (std::size_t a = 0; a < ps.size(); ++a) {
+    double det = 0.0;
+    (void)kgc_matrix<2>(ps, f.kernel, near, static_cast<std::uint32_t>(a), fluid, 0.1, &det);
+    const double want = field(ps.pos[a] + work.shift[a]);
+    if (!(std::abs(det) >= 0.1)) {  // a corner's moment matrix: plain gradient, not exact
+      ++uncorrected;
+      continue;
+    }
+    worst = std::max(worst, std::abs(ps.rho[a] + work.drho[a] - want));
+    moved = std::max(moved, std::abs(ps.rho[a] - want));
+  }
+  std::cout << "  " << uncorrected << " of " << ps.size()
+            << " particles without the gradient correction (|det| < 0.1)\n";
+  EXPECT_LT(uncorrected, ps.size() / 20);
+  std::cout << "  density correction on a linear field: largest error " << worst
+            << " kg/m^3 (uncorrected " << moved << ")\n";
+  EXPECT_GT(moved, 1e-2);
+  EXPECT_LT(worst, 1e-9 * moved + 1e-10);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Case keys
 

@@ -370,7 +370,7 @@ std::string find_manifest(const std::string& name, const std::string& search_roo
 
 CaseSpec load_manifest_case(const Manifest& m, double dp, double end_time) {
   const bool edit = dp > 0.0 || end_time > 0.0 || m.end_time || !m.extra_gauges_yaml.empty();
-  if (!edit) return load_case_file(m.case_file);
+  if (!edit) return load_case_file(m.case_file, m.case_sets);
   // Edit the YAML and re-read it with the ordinary reader, so every override is validated
   // exactly like a hand-written case file.
   YAML::Node root;
@@ -378,6 +378,11 @@ CaseSpec load_manifest_case(const Manifest& m, double dp, double end_time) {
     root = YAML::LoadFile(m.case_file);
   } catch (const YAML::Exception& e) {
     return load_case_file(m.case_file);  // the case reader gives the precise message
+  }
+  // Command-line edits first, so the manifest's dp, end time and gauges still apply.
+  if (!m.case_sets.empty()) {
+    load_case_file(m.case_file);  // the unedited file's own errors first, with its lines
+    root = YAML::Load(edit_case_text(YAML::Dump(root), m.case_sets, m.case_file));
   }
   if (dp > 0.0) root["dp"] = dp;
   const double t_end = end_time > 0.0 ? end_time : (m.end_time ? *m.end_time : -1.0);

@@ -63,9 +63,10 @@ struct Manifest {
   std::string dir;   // its folder (paths are relative to it)
   std::string name;  // folder name
   std::string title;
-  std::string case_file;           // resolved
-  std::string extra_gauges_yaml;   // YAML list appended to the case's gauges ("" if none)
-  std::optional<double> end_time;  // overrides the case's time.end
+  std::string case_file;               // resolved
+  std::string extra_gauges_yaml;       // YAML list appended to the case's gauges ("" if none)
+  std::vector<std::string> case_sets;  // `swell validate --set` edits of the case (not in the file)
+  std::optional<double> end_time;      // overrides the case's time.end
   std::map<std::string, Normalisation> normalisations;
   std::vector<ManifestReference> references;
   std::vector<ManifestGauge> gauges;

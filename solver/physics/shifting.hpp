@@ -26,6 +26,8 @@
 #include "solver/neighbours/cell_grid.hpp"
 #include "solver/neighbours/gather.hpp"
 #include "solver/neighbours/pair_driver.hpp"
+#include "solver/physics/corrections.hpp"
+#include "solver/solver_params.hpp"
 #include "solver/state/particle_set.hpp"
 
 namespace swell {
@@ -34,6 +36,12 @@ struct ShiftingParams {
   double coefficient = 2.0;        // A in dr = -A h |v| dt grad C (DualSPHysics' ShiftCoef -2)
   double surface_threshold = 0.0;  // div r below this: free surface (0: the default for D)
   double tensile_r = 0.2;          // R of the anti-clumping term (Lind et al. 2012)
+  // Move each shifted particle's density with it: rho_a += dr_a . grad rho_a (the first-order
+  // Taylor correction of Lind et al. 2012, section 3.3), grad rho in the kernel-gradient-
+  // corrected difference form over the fluid neighbours (Bonet & Lok 1999; no correction where
+  // the moment matrix is near singular, |det| < 0.1).
+  bool correct_density = false;
+  ShiftMode mode = ShiftMode::Full;
 
   static double default_threshold(int dim) { return dim == 2 ? 1.5 : (dim == 3 ? 2.75 : 0.5); }
   double threshold(int dim) const {
@@ -43,10 +51,11 @@ struct ShiftingParams {
 
 // What the last shifting pass did (for tests and the run summary).
 struct ShiftingStats {
-  std::size_t shifted = 0;  // fluid particles displaced
-  std::size_t surface = 0;  // of which at the free surface (tangential shift only)
-  std::size_t skipped = 0;  // surface particles without a defined surface normal
-  double max_shift = 0.0;   // largest |dr| [m]
+  std::size_t shifted = 0;    // fluid particles displaced
+  std::size_t surface = 0;    // of which at the free surface (tangential shift only)
+  std::size_t skipped = 0;    // surface particles without a defined surface normal
+  std::size_t near_wall = 0;  // fluid particles left unshifted by the mode (nobound, nofixed)
+  double max_shift = 0.0;     // largest |dr| [m]
 };
 
 // Per-particle quantities of the shifting law, for one fluid particle (exposed for tests).
@@ -67,6 +76,8 @@ struct ShiftingWork {
   std::vector<std::uint8_t> cell_flag;  // cells holding a surface particle
   std::vector<Vec<D>> grad_c;           // grad C of each particle (pass 1)
   std::vector<double> div_r;            // div r of each particle (pass 1)
+  std::vector<std::uint8_t> near_wall;  // a wall the mode excludes within the support (pass 1)
+  std::vector<double> drho;             // density correction of each particle (correct_density)
   NeighbourLists lists;                 // the pair driver's per-thread lists
 };
 
@@ -80,21 +91,29 @@ class ShiftingEvaluator {
     double x0, x1, x2;
   };
   ShiftingEvaluator(const ParticleSet<D>& ps, const Kernel& kernel, const double* vol,
-                    double inv_wdp, double tensile_r, Vec<D>* grad_c, double* div_r)
+                    double inv_wdp, double tensile_r, Vec<D>* grad_c, double* div_r,
+                    ShiftMode mode = ShiftMode::Full, std::uint8_t* near_wall = nullptr)
       : kernel_(kernel),
         P_(ps.pos.data()->data()),
+        role_(ps.role.data()),
         vol_(vol),
         inv_wdp_(inv_wdp),
         tensile_r_(tensile_r),
         grad_c_(grad_c),
-        div_r_(div_r) {}
+        div_r_(div_r),
+        mode_(mode),
+        near_wall_(near_wall) {}
 
   Centre centre(std::uint32_t a, bool) const {
     return {P_[a * D], P_[a * D + 1], D == 3 ? P_[a * D + D - 1] : 0.0};
   }
   void pair(const Centre& a, std::uint32_t e, double& g0, double& g1, double& g2, double& div,
-            double&) const {
+            double& wall) const {
     const std::uint32_t b = e & ~kWallBit;
+    // A wall neighbour the mode excludes (the list holds only neighbours within the support).
+    if (mode_ != ShiftMode::Full && (e & kWallBit) &&
+        (mode_ == ShiftMode::NoBound || role_[b] == Role::FixedWall))
+      wall = 1.0;
     const double r0 = a.x0 - P_[b * D], r1 = a.x1 - P_[b * D + 1];
     const double r2c = D == 3 ? a.x2 - P_[b * D + D - 1] : 0.0;
     const double r2 = r0 * r0 + r1 * r1 + r2c * r2c;
@@ -109,24 +128,29 @@ class ShiftingEvaluator {
     div -= vf * r2;
   }
   double finish(std::uint32_t a, const Centre&, double g0, double g1, double g2, double div,
-                double) {
+                double wall) {
     const double g[3] = {g0, g1, g2};
     for (int d = 0; d < D; ++d) grad_c_[a][d] = g[d];
     div_r_[a] = div;
+    if (near_wall_) near_wall_[a] = wall > 0.0 ? 1 : 0;
     return 0.0;
   }
   void idle(std::uint32_t a) {
     grad_c_[a].setZero();
     div_r_[a] = 0.0;
+    if (near_wall_) near_wall_[a] = 0;
   }
 
  private:
   Kernel kernel_;
   const double* P_;
+  const Role* role_;
   const double* vol_;
   double inv_wdp_, tensile_r_;
   Vec<D>* grad_c_;
   double* div_r_;
+  ShiftMode mode_;
+  std::uint8_t* near_wall_;
 };
 
 // Calls fn(b, r, r2, dist) for every particle b != a within the support of particle a (grid
@@ -229,6 +253,7 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
   if (work.vol.size() < ns) work.vol.resize(ns);
   if (work.grad_c.size() < np) work.grad_c.resize(np);
   if (work.div_r.size() < np) work.div_r.resize(np);
+  if (work.near_wall.size() < np) work.near_wall.resize(np);
   if (work.cell_flag.size() < grid.num_cells()) work.cell_flag.resize(grid.num_cells());
   std::vector<Vec<D>>& shift = work.shift;
   std::vector<Vec<D>>& normal = work.normal;
@@ -240,12 +265,13 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
   for_each_pair<D, WallsSeeFluid>(
       ps, grid, kernel.support(),
       ShiftingEvaluator<D, Kernel>(ps, kernel, work.vol.data(), inv_wdp, sp.tensile_r,
-                                   work.grad_c.data(), work.div_r.data()),
+                                   work.grad_c.data(), work.div_r.data(), sp.mode,
+                                   work.near_wall.data()),
       work.lists);
   const double threshold = sp.threshold(D);
   const double ah_dt = sp.coefficient * kernel.h * dt;
-  std::size_t surface = 0, skipped = 0;
-#pragma omp parallel for schedule(dynamic, 256) reduction(+ : surface, skipped)
+  std::size_t surface = 0, skipped = 0, near_wall = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : surface, skipped, near_wall)
   for (long i = 0; i < n; ++i) {
     const auto a = static_cast<std::size_t>(i);
     normal[a].setZero();
@@ -253,6 +279,10 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
     if (ps.role[a] != Role::Fluid) continue;
     const double diffusion = ah_dt * ps.vel[a].norm();
     if (!(diffusion > 0.0)) continue;
+    if (work.near_wall[a]) {  // the mode leaves it where it is (its normal stays 0)
+      ++near_wall;
+      continue;
+    }
     shift[a] = -diffusion * work.grad_c[a];
     if (!(work.div_r[a] < threshold)) continue;
     ++surface;
@@ -311,7 +341,23 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
     shifted += d2 > 0.0;
     max2 = std::max(max2, d2);
   }
-  return {shifted, surface, skipped, std::sqrt(max2)};
+  if (sp.correct_density) {
+    // dr . grad rho from the densities before any shift (applied by the caller with the
+    // shift, so no particle reads a neighbour's corrected density).
+    if (work.drho.size() < np) work.drho.resize(np);
+    const auto near = [&](const Vec<D>& x, auto&& fn) { grid.for_each_candidate_near(x, fn); };
+    const auto fluid = [&](std::uint32_t b) { return ps.role[b] == Role::Fluid; };
+    const auto rho = [&](std::uint32_t b) { return ps.rho[b]; };
+#pragma omp parallel for schedule(dynamic, 256)
+    for (long i = 0; i < n; ++i) {
+      const auto a = static_cast<std::uint32_t>(i);
+      work.drho[a] = 0.0;
+      if (ps.role[a] != Role::Fluid || !(shift[a].squaredNorm() > 0.0)) continue;
+      const Eigen::Matrix<double, D, D> L = kgc_matrix<D>(ps, kernel, near, a, fluid, 0.1);
+      work.drho[a] = shift[a].dot(gradient_at_particle<D>(ps, kernel, near, a, rho, L));
+    }
+  }
+  return {shifted, surface, skipped, near_wall, std::sqrt(max2)};
 }
 
 }  // namespace swell

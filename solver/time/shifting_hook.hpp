@@ -27,6 +27,10 @@ class ShiftingHook final : public StepHook<D> {
     const long n = static_cast<long>(ps.size());
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i) ps.pos[i] += work_.shift[static_cast<std::size_t>(i)];
+    if (p_.correct_density) {
+#pragma omp parallel for schedule(static)
+      for (long i = 0; i < n; ++i) ps.rho[i] += work_.drho[static_cast<std::size_t>(i)];
+    }
   }
 
   const ShiftingStats& stats() const {
