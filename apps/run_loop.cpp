@@ -320,7 +320,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
     if (c.tag.identity != tag.identity)
       throw std::invalid_argument(
           ck + " was written by case '" + c.tag.name + "' (" + c.tag.file + "), and " + spec.file +
-          " differs from it (case text or an input file other than time.end; case identity " +
+          " differs from it (case text, --set edits or an input file, other than time.end; case "
+          "identity " +
           tag.identity.substr(0, 12) + " against " + c.tag.identity.substr(0, 12) +
           "): a restart continues the case the run was started with; run this one with "
           "--overwrite or -o another folder");

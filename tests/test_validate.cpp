@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "apps/validate_command.hpp"
+#include "io/case_file.hpp"
 #include "validation/foam.hpp"
 #include "validation/validation_manifest.hpp"
 #include "validation/validation_report.hpp"
@@ -291,6 +292,22 @@ TEST(Validate, ManifestCaseOverridesDpEndTimeAndGauges) {
   EXPECT_EQ(spec.bodies.size(), 2u);
   EXPECT_EQ(sph_label(0.00142875), "sph_dp0.00142875");
   EXPECT_EQ(foam_label(0.005), "foam_dx0.005");
+  // `swell validate --set`: the command-line edits apply first, then the manifest's dp, end time
+  // and extra gauges (also without any of those, and an edit's error names the edit).
+  Manifest edited = m;
+  edited.case_sets = {"physics.boundary.model=mdbc", "dp=0.02", "time.end=3"};
+  const CaseSpec with_sets = load_manifest_case(edited, 0.005);
+  EXPECT_EQ(with_sets.boundary, BoundaryType::Mdbc);
+  EXPECT_DOUBLE_EQ(with_sets.dp, 0.005);    // the manifest's dp wins over the edit
+  EXPECT_DOUBLE_EQ(with_sets.t_end, 0.05);  // and its end time
+  ASSERT_EQ(with_sets.gauges.size(), 2u);
+  Manifest plain = m;
+  plain.end_time.reset();
+  plain.extra_gauges_yaml.clear();
+  plain.case_sets = {"physics.boundary.model=mdbc"};
+  EXPECT_EQ(load_manifest_case(plain).boundary, BoundaryType::Mdbc);
+  plain.case_sets = {"physics.boundary"};
+  EXPECT_THROW(load_manifest_case(plain), CaseError);
 }
 
 TEST(Validate, ShippedManifestsLoadAndTheirCasesParse) {
