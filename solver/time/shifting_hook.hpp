@@ -28,8 +28,13 @@ class ShiftingHook final : public StepHook<D> {
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i) ps.pos[i] += work_.shift[static_cast<std::size_t>(i)];
     if (p_.correct_density) {
+      // Verlet's rho^(n-1) moves with the particle too (the symplectic scheme overwrites it).
+      const bool prev = ps.rho_prev.size() >= ps.size();
 #pragma omp parallel for schedule(static)
-      for (long i = 0; i < n; ++i) ps.rho[i] += work_.drho[static_cast<std::size_t>(i)];
+      for (long i = 0; i < n; ++i) {
+        ps.rho[i] += work_.drho[static_cast<std::size_t>(i)];
+        if (prev) ps.rho_prev[i] += work_.drho[static_cast<std::size_t>(i)];
+      }
     }
   }
 
