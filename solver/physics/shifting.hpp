@@ -84,7 +84,9 @@ struct ShiftingWork {
 // Pass 1 as an evaluator of the pair driver (neighbours/pair_driver.hpp), so it runs in the
 // same SIMD loop as the forces: s0..s(D-1) sum grad C with the anti-clumping term, s3 sums
 // div r. A padding entry (b == a, r = 0) adds exactly zero. Plain arithmetic, no intrinsics.
-template <int D, class Kernel>
+// kWalls: also flag a wall neighbour the mode excludes (in the max slot); without it (mode
+// full) the loop is the one before the modes existed, so full-mode runs stay bitwise.
+template <int D, class Kernel, bool kWalls = false>
 class ShiftingEvaluator {
  public:
   struct Centre {
@@ -111,9 +113,12 @@ class ShiftingEvaluator {
             double& wall) const {
     const std::uint32_t b = e & ~kWallBit;
     // A wall neighbour the mode excludes (the list holds only neighbours within the support).
-    if (mode_ != ShiftMode::Full && (e & kWallBit) &&
-        (mode_ == ShiftMode::NoBound || role_[b] == Role::FixedWall))
-      wall = 1.0;
+    if constexpr (kWalls) {
+      if ((e & kWallBit) && (mode_ == ShiftMode::NoBound || role_[b] == Role::FixedWall))
+        wall = 1.0;
+    } else {
+      (void)wall;
+    }
     const double r0 = a.x0 - P_[b * D], r1 = a.x1 - P_[b * D + 1];
     const double r2c = D == 3 ? a.x2 - P_[b * D + D - 1] : 0.0;
     const double r2 = r0 * r0 + r1 * r1 + r2c * r2c;
@@ -262,12 +267,21 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
   for (long i = 0; i < n; ++i) work.vol[i] = ps.mass[i] / ps.rho[i];
   for (std::size_t i = gb; i < ns; ++i) work.vol[i] = ps.mass[i] / ps.rho[i];
   const double inv_wdp = 1.0 / kernel.w(dp);
-  for_each_pair<D, WallsSeeFluid>(
-      ps, grid, kernel.support(),
-      ShiftingEvaluator<D, Kernel>(ps, kernel, work.vol.data(), inv_wdp, sp.tensile_r,
-                                   work.grad_c.data(), work.div_r.data(), sp.mode,
-                                   work.near_wall.data()),
-      work.lists);
+  if (sp.mode == ShiftMode::Full) {
+    for_each_pair<D, WallsSeeFluid>(
+        ps, grid, kernel.support(),
+        ShiftingEvaluator<D, Kernel, false>(ps, kernel, work.vol.data(), inv_wdp, sp.tensile_r,
+                                            work.grad_c.data(), work.div_r.data(), sp.mode,
+                                            work.near_wall.data()),
+        work.lists);
+  } else {
+    for_each_pair<D, WallsSeeFluid>(
+        ps, grid, kernel.support(),
+        ShiftingEvaluator<D, Kernel, true>(ps, kernel, work.vol.data(), inv_wdp, sp.tensile_r,
+                                           work.grad_c.data(), work.div_r.data(), sp.mode,
+                                           work.near_wall.data()),
+        work.lists);
+  }
   const double threshold = sp.threshold(D);
   const double ah_dt = sp.coefficient * kernel.h * dt;
   std::size_t surface = 0, skipped = 0, near_wall = 0;
