@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "solver/neighbours/cell_grid.hpp"
@@ -267,21 +268,18 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
   for (long i = 0; i < n; ++i) work.vol[i] = ps.mass[i] / ps.rho[i];
   for (std::size_t i = gb; i < ns; ++i) work.vol[i] = ps.mass[i] / ps.rho[i];
   const double inv_wdp = 1.0 / kernel.w(dp);
-  if (sp.mode == ShiftMode::Full) {
+  const auto pass1 = [&](auto walls) {  // walls: std::bool_constant, the evaluator's kWalls
     for_each_pair<D, WallsSeeFluid>(
         ps, grid, kernel.support(),
-        ShiftingEvaluator<D, Kernel, false>(ps, kernel, work.vol.data(), inv_wdp, sp.tensile_r,
-                                            work.grad_c.data(), work.div_r.data(), sp.mode,
-                                            work.near_wall.data()),
+        ShiftingEvaluator<D, Kernel, decltype(walls)::value>(
+            ps, kernel, work.vol.data(), inv_wdp, sp.tensile_r, work.grad_c.data(),
+            work.div_r.data(), sp.mode, work.near_wall.data()),
         work.lists);
-  } else {
-    for_each_pair<D, WallsSeeFluid>(
-        ps, grid, kernel.support(),
-        ShiftingEvaluator<D, Kernel, true>(ps, kernel, work.vol.data(), inv_wdp, sp.tensile_r,
-                                           work.grad_c.data(), work.div_r.data(), sp.mode,
-                                           work.near_wall.data()),
-        work.lists);
-  }
+  };
+  if (sp.mode == ShiftMode::Full)
+    pass1(std::false_type{});
+  else
+    pass1(std::true_type{});
   const double threshold = sp.threshold(D);
   const double ah_dt = sp.coefficient * kernel.h * dt;
   std::size_t surface = 0, skipped = 0, near_wall = 0;
