@@ -507,7 +507,23 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
 }
 
 template <int D>
-Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particles) {
+Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particles,
+                              std::unique_ptr<Exchange<D>> exchange) {
+  if (exchange && exchange->ranks() > 1) {
+    // What a decomposed run cannot do yet: each needs data of particles beyond the halo.
+    auto refuse = [&](const std::string& what) {
+      throw std::invalid_argument(what +
+                                  " runs on one rank only for now (issue #16): run this "
+                                  "case without mpirun, or with -np 1");
+    };
+    if (setup.params.shifting == ShiftingModel::Fickian)
+      refuse(
+          "particle shifting (physics.shifting; its free-surface normals of the halo images "
+          "are not exchanged)");
+    for (const auto& m : setup.motions)
+      if (m.spec().type == MotionSpec::Type::Wave && m.spec().absorption)
+        refuse("active absorption (a paddle's water level is measured over all particles)");
+  }
   typename Simulation<D>::Hooks hooks;
   if (MovingBodies<D>::any_moves(setup.motions))
     hooks.push_back(std::make_unique<MovingBodies<D>>(setup.motions));
@@ -535,11 +551,29 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
       setup.params.boundary == BoundaryType::Mdbc
           ? make_mdbc<D>(setup.params.mdbc_slip, setup.params.mdbc_det_min, setup.dbc_bodies)
           : make_dbc<D>();
-  return Simulation<D>(setup.params, std::move(particles), std::move(wall), std::move(hooks));
+  return Simulation<D>(setup.params, std::move(particles), std::move(wall), std::move(hooks),
+                       std::move(exchange));
 }
 
-template Simulation<2> make_simulation<2>(const CaseSetup<2>&, ParticleSet<2>);
-template Simulation<3> make_simulation<3>(const CaseSetup<3>&, ParticleSet<3>);
+template <int D>
+double halo_width(const CaseSetup<D>& setup) {
+  double w = kernel_support_factor(setup.params.kernel) * setup.params.h;
+  if (setup.params.boundary == BoundaryType::Mdbc) {
+    // A wall particle's ghost node lies at x + 2 n: its interpolation reaches one support
+    // beyond that.
+    double nmax = 0.0;
+    for (const auto& n : setup.particles.normal) nmax = std::max(nmax, n.norm());
+    w += 2.0 * nmax;
+  }
+  return w;
+}
+
+template Simulation<2> make_simulation<2>(const CaseSetup<2>&, ParticleSet<2>,
+                                          std::unique_ptr<Exchange<2>>);
+template Simulation<3> make_simulation<3>(const CaseSetup<3>&, ParticleSet<3>,
+                                          std::unique_ptr<Exchange<3>>);
+template double halo_width<2>(const CaseSetup<2>&);
+template double halo_width<3>(const CaseSetup<3>&);
 template CaseSetup<2> setup_case<2>(const CaseSpec&);
 template CaseSetup<3> setup_case<3>(const CaseSpec&);
 

@@ -68,7 +68,15 @@ CaseSetup<D> setup_case(const CaseSpec& spec);
 // The simulation of a set-up case: its wall model (DBC or mDBC) and step hooks, in this order:
 // moving bodies (prescribe), shifting, damping zones, settling (all three after_integration).
 // `particles` are the setup's (fresh start) or a checkpoint's (restart).
+// `exchange`: a run on several ranks (parallel/halo.hpp), `particles` being this rank's
+// share; refused for what a decomposed run cannot do yet (shifting, active absorption).
 template <int D>
-Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particles);
+Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particles,
+                              std::unique_ptr<Exchange<D>> exchange = nullptr);
+
+// The halo width of a decomposed run: the kernel support, plus the reach of the mDBC ghost
+// nodes (twice the longest wall normal of setup.particles).
+template <int D>
+double halo_width(const CaseSetup<D>& setup);
 
 }  // namespace swell

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "parallel/comm.hpp"
@@ -91,10 +92,12 @@ int longest_axis(const Vec<D>& lo, const Vec<D>& hi) {
 // global histogram of `bins` bins over [lo, hi] (resolution (hi - lo) / bins). Each slab is at
 // least min_width wide (the kernel support); throws if the domain cannot hold size() such
 // slabs. Collective: every rank calls it with the same arguments and gets the same bounds.
+// `count` > 0: that many slabs instead of one per rank (e.g. from the whole set on every rank
+// with Comm::self(), at the start of a run).
 template <int D>
 Slabs balanced_slabs(const ParticleSet<D>& ps, int axis, double lo, double hi, double min_width,
-                     const Comm& comm, int bins = 4096) {
-  const int n = comm.size();
+                     const Comm& comm, int bins = 4096, int count = 0) {
+  const int n = count > 0 ? count : comm.size();
   if (!(hi - lo >= n * min_width))
     throw std::invalid_argument(
         "domain decomposition: " + std::to_string(n) + " slabs of at least " +
@@ -228,6 +231,138 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
   }
   buf.sent = leaving;
   buf.received = arriving;
+}
+
+// An empty set with the same optional fields enabled as `like`.
+template <int D>
+ParticleSet<D> empty_like(const ParticleSet<D>& like) {
+  ParticleSet<D> out;
+  like.for_each_field([&](const FieldInfo& f, const auto&) {
+    if (f.optional && like.enabled(f)) out.mark_enabled(f);
+  });
+  return out;
+}
+
+// The entries `index` of `all` (in that order), the first n_active of them active.
+template <int D>
+ParticleSet<D> subset(const ParticleSet<D>& all, const std::vector<std::uint32_t>& index,
+                      std::size_t n_active) {
+  ParticleSet<D> out = empty_like(all);
+  const auto& src = all;
+  out.for_each_field([&](const FieldInfo& f, auto& a) {
+    if (!out.enabled(f)) return;
+    src.for_each_field([&](const FieldInfo& g, const auto& b) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(a)>, std::decay_t<decltype(b)>>) {
+        if (g.index != f.index) return;
+        a.resize(index.size());
+        for (std::size_t k = 0; k < index.size(); ++k) a[k] = b[index[k]];
+      }
+    });
+  });
+  out.n_active = n_active;
+  return out;
+}
+
+// Rank `rank`'s share of a whole particle set at the start of a decomposed run (or a restart
+// on another number of ranks): the active particles its slab owns, in their order; the
+// excluded ones (kept for the record) all go to rank 0.
+template <int D>
+ParticleSet<D> share_by_slabs(const ParticleSet<D>& all, const Slabs& slabs, int rank) {
+  std::vector<std::uint32_t> index;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const double x = all.pos[i][slabs.axis];
+    // A non-finite position stays with rank 0, whose sort excludes it.
+    if ((std::isfinite(x) ? slabs.owner(x) : 0) == rank)
+      index.push_back(static_cast<std::uint32_t>(i));
+  }
+  const std::size_t active = index.size();
+  if (rank == 0)
+    for (std::size_t i = all.size(); i < all.total(); ++i)
+      index.push_back(static_cast<std::uint32_t>(i));
+  return subset(all, index, active);
+}
+
+// Where each rank's particles are in a gathered set (gather_to_root): active blocks in rank
+// order, then excluded blocks in rank order.
+struct GatherLayout {
+  std::vector<std::uint64_t> active, excluded;  // per rank
+};
+
+// Rank `rank`'s share by a gathered layout: exactly the particles it held, in its order (a
+// restart on the same number of ranks continues bit for bit).
+template <int D>
+ParticleSet<D> share_by_layout(const ParticleSet<D>& all, const GatherLayout& layout, int rank) {
+  std::uint64_t a0 = 0, e0 = 0, na = 0, ne = 0;
+  for (std::size_t r = 0; r < layout.active.size(); ++r) {
+    if (static_cast<int>(r) < rank) a0 += layout.active[r], e0 += layout.excluded[r];
+    na += layout.active[r], ne += layout.excluded[r];
+  }
+  if (na != all.size() || na + ne != all.total())
+    throw std::invalid_argument("share_by_layout: the layout does not match the particles");
+  const auto r = static_cast<std::size_t>(rank);
+  std::vector<std::uint32_t> index;
+  for (std::uint64_t k = 0; k < layout.active[r]; ++k)
+    index.push_back(static_cast<std::uint32_t>(a0 + k));
+  for (std::uint64_t k = 0; k < layout.excluded[r]; ++k)
+    index.push_back(static_cast<std::uint32_t>(na + e0 + k));
+  return subset(all, index, static_cast<std::size_t>(layout.active[r]));
+}
+
+// Every rank's particles (active and excluded) on rank 0, with the per-particle vectors
+// `extra` (e.g. accelerations, one per active particle; empty: none) gathered alongside into
+// extra_out. Collective; out and extra_out are filled on rank 0 only (other ranks: untouched).
+struct GatherBuffers {
+  std::vector<std::byte> send, recv;
+  std::vector<int> send_count, recv_count, recv_displ;
+};
+
+template <int D>
+GatherLayout gather_to_root(const ParticleSet<D>& ps, const Comm& comm, ParticleSet<D>& out,
+                            const std::vector<Vec<D>>* extra, std::vector<Vec<D>>* extra_out,
+                            GatherBuffers& buf) {
+  const std::size_t rec = record_bytes(ps), xrec = extra ? sizeof(Vec<D>) : 0;
+  GatherLayout layout;
+  layout.active = comm.gather_all(ps.size());
+  layout.excluded = comm.gather_all(ps.total() - ps.size());
+  const auto n = static_cast<std::size_t>(comm.size());
+  // Two rounds: the active particles (with their extra values), then the excluded ones.
+  for (int round = 0; round < 2; ++round) {
+    const std::size_t first = round == 0 ? 0 : ps.size(),
+                      last = round == 0 ? ps.size() : ps.total();
+    const std::size_t r = round == 0 ? rec + xrec : rec;
+    buf.send.resize((last - first) * r);
+    std::byte* o = buf.send.data();
+    for (std::size_t i = first; i < last; ++i, o += r) {
+      pack(ps, i, o);
+      if (round == 0 && extra) std::memcpy(o + rec, (*extra)[i].data(), sizeof(Vec<D>));
+    }
+    buf.send_count.assign(n, 0);
+    buf.send_count[0] = static_cast<int>((last - first) * r);
+    comm.alltoallv(buf.send, buf.send_count, buf.recv, buf.recv_count, buf.recv_displ);
+    if (comm.rank() != 0) continue;
+    std::uint64_t count = 0;
+    for (std::size_t k = 0; k < n; ++k) count += round == 0 ? layout.active[k] : layout.excluded[k];
+    if (round == 0) {
+      out = empty_like(ps);
+      out.for_each_field([&](const FieldInfo& f, auto& a) {
+        if (out.enabled(f)) a.resize(count);
+      });
+      if (extra_out) extra_out->resize(count);
+      for (std::uint64_t k = 0; k < count; ++k) {
+        const std::byte* in = buf.recv.data() + k * r;
+        unpack(out, k, in);
+        if (extra_out && extra) std::memcpy((*extra_out)[k].data(), in + rec, sizeof(Vec<D>));
+      }
+      out.n_active = count;
+    } else {
+      const std::size_t base = out.pos.size();
+      out.for_each_field([&](const FieldInfo& f, auto& a) {
+        if (out.enabled(f)) a.resize(base + count);
+      });
+      for (std::uint64_t k = 0; k < count; ++k) unpack(out, base + k, buf.recv.data() + k * r);
+    }
+  }
+  return layout;
 }
 
 }  // namespace swell::parallel

@@ -16,6 +16,11 @@
 // Images are never centres of the pair loop. drop_ghosts() removes them (the Simulation does
 // at the end of every step); refresh_ghosts() copies their sources' state again after a stage
 // changed it. With no periodic axis none of this runs and the sort is as before.
+//
+// Remote images (domain decomposition, solver/time/exchange.hpp) take the same path: the
+// exchange asks place_remote_images() where each arriving particle goes in the image block,
+// stores it there and calls attach_remote_images(). Such an image has no local source
+// (ghost_source() is kRemote); refresh_ghosts() leaves it to the exchange.
 #pragma once
 
 #include <algorithm>
@@ -74,7 +79,9 @@ class CellGrid {
   bool any_periodic() const { return any_periodic_; }
   std::size_t ghost_count() const { return n_ghost_; }
   // Source (an active index) and cell of image k, stored at ParticleSet::ghost_begin() + k.
+  // kRemote for a remote image (its source lives on another rank).
   std::uint32_t ghost_source(std::size_t k) const { return ghost_src_[k]; }
+  static constexpr std::uint32_t kRemote = 0xffffffffu;
   std::uint32_t ghost_cell(std::size_t k) const { return ghost_cell_[k]; }
 
   double cell_size() const { return cell_size_; }
@@ -176,10 +183,48 @@ class CellGrid {
     const std::size_t base = ps.ghost_begin();
     for (std::size_t k = 0; k < n_ghost_; ++k) {
       const std::uint32_t src = ghost_src_[k];
+      if (src == kRemote) continue;  // the exchange refreshes it
       ps.pos[base + k] = ps.pos[src] + ghost_shift_[k];
       ps.vel[base + k] = ps.vel[src];
       ps.rho[base + k] = ps.rho[src];
     }
+  }
+
+  // Remote images (after sort(), on a grid without periodic axes): the n arriving particles at
+  // positions xs (inside the domain) get slots in the image block, ordered by cell; image k
+  // must be stored at ps.stored() + slot_of[k] (the caller grows the arrays by n), then
+  // attach_remote_images() marks their cells and sets ps.n_ghost. Allocation-free once the
+  // buffers reached their size.
+  void place_remote_images(const ParticleSet<D>& ps, const std::vector<Vec<D>>& xs,
+                           std::vector<std::uint32_t>& slot_of) {
+    if (any_periodic_ || ps.n_ghost != 0)
+      throw std::logic_error("CellGrid: remote images on a grid with periodic images");
+    const std::size_t ng = xs.size();
+    cand_cell_.resize(ng);
+    for (std::size_t k = 0; k < ng; ++k) cand_cell_[k] = ghost_cell_index(xs[k]);
+    ghost_start_.assign(num_cells_ + 2, 0u);
+    for (std::size_t k = 0; k < ng; ++k) ++ghost_start_[cand_cell_[k] + 1];
+    for (std::size_t c = 0; c + 1 < ghost_start_.size(); ++c)
+      ghost_start_[c + 1] += ghost_start_[c];
+    ghost_src_.assign(ng, kRemote);
+    ghost_shift_.assign(ng, Vec<D>::Zero());
+    ghost_cell_.resize(ng);
+    slot_of.resize(ng);
+    cursor_.assign(ghost_start_.begin(), ghost_start_.end());
+    for (std::size_t k = 0; k < ng; ++k) {
+      const std::uint32_t slot = cursor_[cand_cell_[k]]++;
+      slot_of[k] = slot;
+      ghost_cell_[slot] = cand_cell_[k];
+    }
+    ghost_base_ = static_cast<std::uint32_t>(ps.pos.size());
+    n_ghost_ = ng;
+  }
+  void attach_remote_images(ParticleSet<D>& ps) {
+    if (ps.pos.size() != ghost_base_ + n_ghost_)
+      throw std::logic_error("CellGrid: the remote images are not stored where they were placed");
+    for (std::size_t k = 0; k < n_ghost_; ++k)
+      has_fluid_[ghost_cell_[k]] |= ps.role[ghost_base_ + k] == Role::Fluid;
+    ps.n_ghost = n_ghost_;
   }
 
   // Index range [begin, end) of the particles in cell c (valid after sort()).

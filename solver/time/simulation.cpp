@@ -13,12 +13,14 @@ namespace swell {
 
 template <int D>
 Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles,
-                          std::unique_ptr<BoundaryModel<D>> boundary, Hooks hooks)
+                          std::unique_ptr<BoundaryModel<D>> boundary, Hooks hooks,
+                          std::unique_ptr<Exchange<D>> exchange)
     : prm_(params),
       eos_(params.rho0, params.c0, params.gamma),
       ps_(std::move(particles)),
       boundary_(std::move(boundary)),
-      hooks_(std::move(hooks)) {
+      hooks_(std::move(hooks)),
+      exchange_(std::move(exchange)) {
   if (!(prm_.h > 0.0) || !(prm_.c0 > 0.0) || !(prm_.dp > 0.0))
     throw std::invalid_argument("Simulation: h, c0 and dp must be positive");
   if (!(prm_.gamma > 1.0)) throw std::invalid_argument("Simulation: the Tait gamma must be > 1");
@@ -36,6 +38,10 @@ Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles,
   std::array<bool, D> periodic{};
   for (int d = 0; d < D; ++d) periodic[d] = prm_.periodic[d];
   grid_.set_periodic(periodic);
+  if (exchange_ && grid_.any_periodic())
+    throw std::invalid_argument(
+        "periodic boundaries (domain.periodic) run on one rank only: a decomposed run cannot "
+        "wrap its halo yet");
   f_.resize(ps_.total());
   // Forces at the initial state, so acceleration() (wall loads) is valid before the first step.
   evaluate();
@@ -132,16 +138,35 @@ void Simulation<D>::record_faces(std::size_t first, std::size_t last) {
 
 template <int D>
 void Simulation<D>::evaluate() {
+  if (exchange_) {
+    const double tm = omp_get_wtime();
+    grid_.drop_ghosts(ps_);  // the last evaluation's halo
+    exchange_->migrate(ps_, steps_);
+    times_.neighbour += omp_get_wtime() - tm;
+  }
   sort_particles();
+  if (exchange_) {
+    const double th = omp_get_wtime();
+    exchange_->build_halo(ps_, grid_);
+    times_.neighbour += omp_get_wtime() - th;
+  }
   const double t0 = omp_get_wtime();
   // Periodic images are read through the force buffers too (rare growth, amortised).
   if (f_.ace.size() < ps_.stored()) f_.resize(ps_.stored() + ps_.stored() / 8);
   StepState<D> s = state(time_);
   for_each_hook([&](StepHook<D>& h) { h.before_forces(s); });
-  if (ps_.n_ghost > 0) grid_.refresh_ghosts(ps_);  // walls' and re-initialised densities
+  refresh_images();  // walls' and re-initialised densities
   boundary_->forces(s);
   for_each_hook([&](StepHook<D>& h) { h.after_forces(s); });
   times_.interaction += omp_get_wtime() - t0;
+}
+
+template <int D>
+void Simulation<D>::refresh_images() {
+  if (exchange_)
+    exchange_->refresh(ps_);  // every rank calls it, with images or not
+  else if (ps_.n_ghost > 0)
+    grid_.refresh_ghosts(ps_);
 }
 
 template <int D>
@@ -156,6 +181,12 @@ void Simulation<D>::after_substep(double t) {
 template <int D>
 double Simulation<D>::choose_dt() const {
   if (prm_.fixed_dt > 0.0) return prm_.fixed_dt;
+  double dt = local_dt();
+  return exchange_ ? exchange_->global_min(dt) : dt;
+}
+
+template <int D>
+double Simulation<D>::local_dt() const {
   const long n = static_cast<long>(ps_.size());
   double a2max = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : a2max)
@@ -176,7 +207,7 @@ void Simulation<D>::step() {
   else
     step_symplectic();
   {
-    if (ps_.n_ghost > 0) grid_.refresh_ghosts(ps_);  // images at the integrated state
+    refresh_images();  // images at the integrated state
     StepState<D> s = state(time_ + dt_);
     for_each_hook([&](StepHook<D>& h) { h.after_integration(s); });
     grid_.drop_ghosts(ps_);  // between steps there are no periodic images
@@ -230,6 +261,7 @@ void Simulation<D>::step() {
            "for fluid placed inside walls";
     throw InstabilityError(msg.str());
   }
+  if (exchange_) fluid_left = exchange_->global_sum(fluid_left);
   if (fluid_left == 0) throw InstabilityError("every fluid particle has been excluded");
 }
 

@@ -18,6 +18,7 @@
 #include "solver/solver_params.hpp"
 #include "solver/state/particle_set.hpp"
 #include "solver/time/clock.hpp"
+#include "solver/time/exchange.hpp"
 #include "solver/time/step_hooks.hpp"
 
 namespace swell {
@@ -30,8 +31,11 @@ class Simulation {
   // `boundary` runs the force stage (bc/dbc.hpp: make_dbc); `hooks` run at their stages in
   // the order given. Particles of moving walls must be placed at their t = 0 pose by the caller
   // (bc/motion's MovingBodies::place_initial) or come from a checkpoint.
+  // `exchange` (a run on several ranks, parallel/halo.hpp): `particles` are this rank's share;
+  // without one the run is a single rank, as always.
   Simulation(const SolverParams& params, ParticleSet<D> particles,
-             std::unique_ptr<BoundaryModel<D>> boundary, Hooks hooks = {});
+             std::unique_ptr<BoundaryModel<D>> boundary, Hooks hooks = {},
+             std::unique_ptr<Exchange<D>> exchange = nullptr);
 
   // Advances by one (variable) time step.
   void step();
@@ -55,6 +59,8 @@ class Simulation {
   };
   const DensityExclusion& worst_density_exclusion() const { return worst_rho_; }
   const PhaseTimes& phase_times() const { return times_; }
+  // The decomposition of a run on several ranks (null on one rank).
+  const Exchange<D>* exchange() const { return exchange_.get(); }
   std::size_t fluid_count() const;
 
   // Pressure of every active particle in the current order (recomputed from density).
@@ -81,7 +87,8 @@ class Simulation {
  private:
   StepState<D> state(double t) { return {ps_, grid_, f_, prm_, eos_, t, dt_}; }
   void evaluate();  // sort + before_forces + forces + after_forces at the current positions
-  double choose_dt() const;
+  double choose_dt() const;  // the global minimum on several ranks
+  double local_dt() const;
   void step_symplectic();
   void step_verlet();
   void sort_particles();
@@ -89,6 +96,9 @@ class Simulation {
   void record_faces(std::size_t first, std::size_t last);
   // prescribe + finish_density at time t, after an integration substep.
   void after_substep(double t);
+  // The periodic images' and the remote images' state from their sources (collective on
+  // several ranks).
+  void refresh_images();
   template <class Stage>
   void for_each_hook(Stage&& stage);
 
@@ -97,6 +107,7 @@ class Simulation {
   ParticleSet<D> ps_;
   std::unique_ptr<BoundaryModel<D>> boundary_;
   Hooks hooks_;
+  std::unique_ptr<Exchange<D>> exchange_;
   CellGrid<D> grid_;
   ForceBuffers<D> f_;
   double time_ = 0.0, dt_ = 0.0, first_dt_ = 0.0;

@@ -184,18 +184,3 @@ TEST(MpiDecomposition, TooManyRanksForTheDomainIsRefused) {
 
 }  // namespace
 }  // namespace swell::parallel
-
-int main(int argc, char** argv) {
-  swell::parallel::Environment env(argc, argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  // Only rank 0 prints gtest's progress; every rank runs every test and fails on its own.
-  if (swell::parallel::Comm::world().rank() != 0) {
-    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
-    delete listeners.Release(listeners.default_result_printer());
-  }
-  const int rc = RUN_ALL_TESTS();
-  // The job fails if any rank failed.
-  int worst = rc;
-  MPI_Allreduce(&rc, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  return worst;
-}

@@ -1,0 +1,198 @@
+// The slab decomposition in the time loop (issue #16): SlabExchange is the Exchange
+// (solver/time/exchange.hpp) of a run on several ranks.
+//
+// - migrate: every `rebalance_every` steps the slab bounds are balanced by particle count
+//   (balanced_slabs), then the particles that left this rank's slab go to their owners
+//   (migrate, whole records from the field table).
+// - build_halo (after the sort): the active particles within `width` of a slab face are sent,
+//   whole records, to the rank on the other side, which stores them as images after its own
+//   particles, placed in its cell grid (CellGrid::place_remote_images). `width` is the kernel
+//   support plus whatever reach a stage adds beyond it (mDBC: the ghost node lies up to twice
+//   the wall normal from its wall particle), and each slab is at least that wide, so a halo
+//   only ever comes from the next slab.
+// - refresh: position, velocity and density of the same particles again, into the same slots.
+// Every call is collective. The order of everything sent is fixed (rank order, then the local
+// order), so a run on a given number of ranks is deterministic.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "parallel/comm.hpp"
+#include "parallel/decomposition.hpp"
+#include "solver/time/exchange.hpp"
+
+namespace swell::parallel {
+
+// What the exchange moved, for the run summary and the bench figures.
+struct HaloStats {
+  std::uint64_t builds = 0;       // halo builds (one per evaluation)
+  std::uint64_t images = 0;       // images received, summed over the builds
+  std::uint64_t image_bytes = 0;  // bytes received in builds and refreshes
+  std::uint64_t migrated = 0;     // particles sent away by migration
+  std::uint64_t rebalances = 0;
+  double seconds = 0.0;  // in migrate, build_halo and refresh (communication included)
+};
+
+template <int D>
+class SlabExchange final : public Exchange<D> {
+ public:
+  // slabs: the initial bounds (one slab per rank of comm, each at least `width` wide);
+  // [lo, hi]: the global domain along the slab axis (rebalancing keeps within it).
+  SlabExchange(Comm comm, Slabs slabs, double width, long rebalance_every)
+      : comm_(comm), slabs_(std::move(slabs)), width_(width), rebalance_every_(rebalance_every) {
+    if (slabs_.size() != comm_.size())
+      throw std::invalid_argument("SlabExchange: one slab per rank");
+    for (int r = 1; r + 1 < slabs_.size(); ++r)
+      if (!(slabs_.lo[static_cast<std::size_t>(r) + 1] - slabs_.lo[static_cast<std::size_t>(r)] >=
+            width_ * (1.0 - 1e-12)))
+        throw std::invalid_argument("SlabExchange: slab " + std::to_string(r) +
+                                    " is narrower than the halo width");
+  }
+
+  const Slabs& slabs() const { return slabs_; }
+  const HaloStats& stats() const { return stats_; }
+  double width() const { return width_; }
+  // Images of the last halo build on this rank.
+  std::size_t images() const { return slot_of_.size(); }
+
+  void migrate(ParticleSet<D>& ps, long step) override {
+    const double t0 = wtime();
+    if (rebalance_every_ > 0 && step > 0 && step % rebalance_every_ == 0 &&
+        step != last_rebalance_) {
+      slabs_ = balanced_slabs(ps, slabs_.axis, slabs_.lo.front(), slabs_.lo.back(), width_, comm_);
+      last_rebalance_ = step;
+      ++stats_.rebalances;
+    }
+    parallel::migrate(ps, slabs_, comm_, mig_);
+    stats_.migrated += mig_.sent;
+    stats_.seconds += wtime() - t0;
+  }
+
+  void build_halo(ParticleSet<D>& ps, CellGrid<D>& grid) override {
+    const double t0 = wtime();
+    const int me = comm_.rank(), n = comm_.size();
+    const int ax = slabs_.axis;
+    const double lo = slabs_.lo[static_cast<std::size_t>(me)],
+                 hi = slabs_.lo[static_cast<std::size_t>(me) + 1];
+    send_lo_.clear();
+    send_hi_.clear();
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const double x = ps.pos[i][ax];
+      if (me > 0 && x < lo + width_) send_lo_.push_back(static_cast<std::uint32_t>(i));
+      if (me + 1 < n && x >= hi - width_) send_hi_.push_back(static_cast<std::uint32_t>(i));
+    }
+    const std::size_t rec = record_bytes(ps);
+    exchange_lists(
+        ps, rec, [&](const ParticleSet<D>& p, std::size_t i, std::byte* out) { pack(p, i, out); });
+    const std::size_t arriving = total_received(rec);
+    // Positions first (pos is the field table's first field, at the start of each record).
+    xs_.resize(arriving);
+    for (std::size_t k = 0; k < arriving; ++k)
+      std::memcpy(xs_[k].data(), recv_.data() + k * rec, sizeof(Vec<D>));
+    grid.place_remote_images(ps, xs_, slot_of_);
+    const std::size_t base = ps.pos.size();
+    ps.for_each_field([&](const FieldInfo& f, auto& a) {
+      if (ps.enabled(f)) a.resize(base + arriving);
+    });
+    for (std::size_t k = 0; k < arriving; ++k)
+      unpack(ps, base + slot_of_[k], recv_.data() + k * rec);
+    grid.attach_remote_images(ps);
+    ++stats_.builds;
+    stats_.images += arriving;
+    stats_.image_bytes += arriving * rec;
+    stats_.seconds += wtime() - t0;
+  }
+
+  void refresh(ParticleSet<D>& ps) override {
+    const double t0 = wtime();
+    constexpr std::size_t rec = 2 * sizeof(Vec<D>) + sizeof(double);
+    exchange_lists(ps, rec, [](const ParticleSet<D>& p, std::size_t i, std::byte* out) {
+      std::memcpy(out, p.pos[i].data(), sizeof(Vec<D>));
+      std::memcpy(out + sizeof(Vec<D>), p.vel[i].data(), sizeof(Vec<D>));
+      std::memcpy(out + 2 * sizeof(Vec<D>), &p.rho[i], sizeof(double));
+    });
+    const std::size_t arriving = total_received(rec);
+    if (arriving != slot_of_.size() || ps.n_ghost != arriving)
+      throw std::logic_error("SlabExchange::refresh: the halo changed since it was built");
+    const std::size_t base = ps.ghost_begin();
+    for (std::size_t k = 0; k < arriving; ++k) {
+      const std::byte* in = recv_.data() + k * rec;
+      const std::size_t j = base + slot_of_[k];
+      std::memcpy(ps.pos[j].data(), in, sizeof(Vec<D>));
+      std::memcpy(ps.vel[j].data(), in + sizeof(Vec<D>), sizeof(Vec<D>));
+      std::memcpy(&ps.rho[j], in + 2 * sizeof(Vec<D>), sizeof(double));
+    }
+    stats_.image_bytes += arriving * rec;
+    stats_.seconds += wtime() - t0;
+  }
+
+  double global_min(double x) const override { return comm_.min(x); }
+  std::uint64_t global_sum(std::uint64_t x) const override { return comm_.sum(x); }
+  int rank() const override { return comm_.rank(); }
+  int ranks() const override { return comm_.size(); }
+
+  // The slab bounds, so a restart on the same ranks continues with them.
+  void save(std::map<std::string, double>& out) const override {
+    out["decomposition.ranks"] = comm_.size();
+    out["decomposition.axis"] = slabs_.axis;
+    for (std::size_t r = 0; r < slabs_.lo.size(); ++r)
+      out["decomposition.lo." + std::to_string(r)] = slabs_.lo[r];
+  }
+
+ private:
+  static double wtime();
+
+  // Sends send_lo_ to rank - 1 and send_hi_ to rank + 1, `rec` bytes per particle written by
+  // write(ps, i, out); what arrives is in recv_ (rank order).
+  template <class Write>
+  void exchange_lists(const ParticleSet<D>& ps, std::size_t rec, Write&& write) {
+    const int me = comm_.rank(), n = comm_.size();
+    send_count_.assign(static_cast<std::size_t>(n), 0);
+    if (me > 0)
+      send_count_[static_cast<std::size_t>(me) - 1] = static_cast<int>(send_lo_.size() * rec);
+    if (me + 1 < n)
+      send_count_[static_cast<std::size_t>(me) + 1] = static_cast<int>(send_hi_.size() * rec);
+    const std::size_t bytes = (send_lo_.size() + send_hi_.size()) * rec;
+    if (send_.size() < bytes) send_.resize(bytes);
+    std::byte* out = send_.data();
+    for (const std::uint32_t i : send_lo_) write(ps, i, out), out += rec;
+    for (const std::uint32_t i : send_hi_) write(ps, i, out), out += rec;
+    comm_.alltoallv(send_, send_count_, recv_, recv_count_, recv_displ_);
+  }
+  std::size_t total_received(std::size_t rec) const {
+    std::size_t bytes = 0;
+    for (const int c : recv_count_) bytes += static_cast<std::size_t>(c);
+    if (bytes % rec != 0)
+      throw std::runtime_error(
+          "SlabExchange: records of another size arrived (optional fields differ between ranks)");
+    return bytes / rec;
+  }
+
+  Comm comm_;
+  Slabs slabs_;
+  double width_;
+  long rebalance_every_, last_rebalance_ = -1;
+  MigrationBuffers mig_;
+  std::vector<std::uint32_t> send_lo_, send_hi_, slot_of_;
+  std::vector<std::byte> send_, recv_;
+  std::vector<int> send_count_, recv_count_, recv_displ_;
+  std::vector<Vec<D>> xs_;
+  HaloStats stats_;
+};
+
+template <int D>
+double SlabExchange<D>::wtime() {
+  return static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                 std::chrono::steady_clock::now().time_since_epoch())
+                                 .count()) *
+         1e-9;
+}
+
+}  // namespace swell::parallel
