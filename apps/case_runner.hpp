@@ -4,6 +4,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <stdexcept>
 #include <string>
 
 #include "io/case_setup.hpp"
@@ -22,6 +23,21 @@ struct RunOptions {
   bool restart = false;
   // Replace the run an output folder already holds (else such a folder is refused).
   bool overwrite = false;
+  // Several MPI ranks: the slab bounds are balanced by particle count every this many steps
+  // (0: never).
+  long rebalance_every = 100;
+};
+
+// Thrown on the other ranks of a decomposed run when rank 0 failed in its own work (files,
+// gauges, watchdog): rank 0 reports; the others leave quietly with the same exit code.
+class PeerFailed : public std::runtime_error {
+ public:
+  explicit PeerFailed(int code)
+      : std::runtime_error("rank 0 stopped the run (its message says why)"), code_(code) {}
+  int exit_code() const { return code_; }
+
+ private:
+  int code_;
 };
 
 struct RunSummary {
@@ -46,6 +62,9 @@ struct RunSummary {
 // for a folder in use or holding another run (unless overwrite), or a checkpoint of another
 // case; Interrupted (apps/stop_signals.hpp) after SIGINT/SIGTERM; InstabilityError if the run blows
 // up (the last checkpoint written before stays valid).
+// Under mpirun with N > 1 ranks every rank calls it: the particles are split into slabs
+// (parallel/halo.hpp) and rank 0 alone writes (its summary covers the whole run; the others
+// return an empty one).
 RunSummary run_case(const CaseSpec& spec, const RunOptions& options);
 
 }  // namespace swell

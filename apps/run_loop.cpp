@@ -19,8 +19,10 @@
 #include "apps/case_runner.hpp"
 #include "apps/gauge_set.hpp"
 #include "apps/run_log.hpp"
+#include "apps/run_view.hpp"
 #include "apps/stop_signals.hpp"
 #include "bc/absorption.hpp"
+#include "io/case_file.hpp"
 #include "io/case_identity.hpp"
 #include "io/gauge_csv.hpp"
 #include "io/hdf5_file.hpp"
@@ -29,6 +31,8 @@
 #include "io/run_folder.hpp"
 #include "io/run_info.hpp"
 #include "io/vtk_writer.hpp"
+#include "parallel/comm.hpp"
+#include "parallel/halo.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/physics/shifting.hpp"
 #include "swell/version.hpp"
@@ -163,8 +167,125 @@ RunMetadata make_metadata(const CaseSpec& spec, const CaseSetup<D>& setup, const
   return m;
 }
 
+// The points where the ranks of a decomposed run agree that rank 0's own work (output folder,
+// files, gauges, watchdog: things the other ranks do not do) went well. Rank 0 marks such work
+// with root_work(); every rank then meets at agree(). If rank 0 throws in between, run_case
+// posts its exit code through fail() at the agree() the others wait in, and they leave with it
+// (PeerFailed). Failures every rank meets alike (the case set-up, an unstable step) need no
+// agreement: each rank throws by itself. One rank: every call is a no-op.
+class RunProtocol {
+ public:
+  explicit RunProtocol(parallel::Comm comm) : comm_(comm) {}
+  void root_work() { pending_ = comm_.size() > 1 && comm_.rank() == 0; }
+  void symmetric() { pending_ = false; }
+  void agree() {
+    if (comm_.size() == 1) return;
+    pending_ = false;
+    const int code = static_cast<int>(comm_.max(0.0));
+    if (code != 0) throw PeerFailed(code);
+  }
+  void fail(int code) {
+    if (!pending_) return;
+    pending_ = false;
+    comm_.max(static_cast<double>(code));
+  }
+
+ private:
+  parallel::Comm comm_;
+  bool pending_ = false;
+};
+
+// This rank's simulation. One rank: the case's, as always. Several: this rank's slab of the
+// particles (`all`: the set-up's or a checkpoint's) with a SlabExchange. A checkpoint written
+// on the same number of ranks (`saved` has its decomposition) gives each rank back exactly the
+// particles it held, in their order, and the slab bounds; otherwise the slabs are balanced by
+// particle count along the domain's longest axis.
 template <int D>
-RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
+Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
+                               const std::map<std::string, double>* saved,
+                               const parallel::Comm& comm, long rebalance_every) {
+  if (comm.size() == 1) return make_simulation<D>(setup, std::move(all));
+  const double width = halo_width(setup);
+  const SolverParams& pr = setup.params;
+  const int n = comm.size();
+  auto get = [&](const std::string& key) {
+    const auto it = saved->find(key);
+    if (it == saved->end())
+      throw std::invalid_argument("checkpoint: no '" + key + "' in its decomposition record");
+    return it->second;
+  };
+  parallel::Slabs slabs;
+  ParticleSet<D> mine;
+  if (saved && saved->count("decomposition.ranks") &&
+      static_cast<int>(saved->at("decomposition.ranks")) == n) {
+    slabs.axis = static_cast<int>(get("decomposition.axis"));
+    parallel::GatherLayout layout;
+    for (int r = 0; r <= n; ++r) {
+      slabs.lo.push_back(get("decomposition.lo." + std::to_string(r)));
+      if (r == n) break;
+      layout.active.push_back(
+          static_cast<std::uint64_t>(get("decomposition.active." + std::to_string(r))));
+      layout.excluded.push_back(
+          static_cast<std::uint64_t>(get("decomposition.excluded." + std::to_string(r))));
+    }
+    mine = parallel::share_by_layout(all, layout, comm.rank());
+  } else {
+    const int axis = parallel::longest_axis<D>(pr.domain_min.template head<D>(),
+                                               pr.domain_max.template head<D>());
+    slabs = parallel::balanced_slabs(all, axis, pr.domain_min[axis], pr.domain_max[axis], width,
+                                     parallel::Comm::self(), 4096, n);
+    mine = parallel::share_by_slabs(all, slabs, comm.rank());
+  }
+  all = ParticleSet<D>();  // the whole set is not kept on any rank
+  return make_simulation<D>(
+      setup, std::move(mine),
+      std::make_unique<parallel::SlabExchange<D>>(comm, slabs, width, rebalance_every));
+}
+
+// Ranks 1..N-1 of a decomposed run: the same simulation calls and collectives as rank 0's
+// run_dim, in the same order, and no output of their own.
+template <int D>
+RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const parallel::Comm& comm) {
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  const std::string out_dir = opt.out_dir.empty() ? "out/" + spec.name : opt.out_dir;
+  RunProtocol proto(comm);
+  CaseSetup<D> setup = setup_case<D>(spec);
+  proto.agree();  // rank 0: folder, logs, checkpoint checks
+  std::optional<Simulation<D>> sim;
+  if (opt.restart) {
+    const std::string ck = latest_valid_checkpoint((fs::path(out_dir) / "checkpoint.h5").string());
+    Checkpoint<D> c = read_checkpoint<D>(ck);
+    sim.emplace(
+        build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm, opt.rebalance_every));
+    SimulationClock clock = c.clock;
+    clock.excluded = {};  // rank 0 carries the run's counts
+    sim->restore(clock);
+    sim->restore_hooks(c.schedule);
+  } else {
+    sim.emplace(
+        build_simulation<D>(setup, std::move(setup.particles), nullptr, comm, opt.rebalance_every));
+  }
+  RunView<D> view(*sim, comm);
+  view.sync();
+  proto.agree();  // rank 0: watchdog, output files, the first outputs
+  while (sim->time() < spec.t_end) {
+    if (const int sig = static_cast<int>(comm.max(static_cast<double>(stop_requested())))) {
+      view.sync();
+      proto.agree();  // rank 0 writes the checkpoint
+      throw Interrupted(sig, "stopped");
+    }
+    sim->step();
+    if (comm.max(0.0) > 0.0) view.sync();
+    proto.agree();  // rank 0: gauges, watchdog, outputs
+  }
+  return {};
+}
+
+template <int D>
+RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, RunProtocol& proto) {
+  const parallel::Comm comm = parallel::Comm::world();
+  if (comm.rank() != 0) return run_worker<D>(spec, opt, comm);
+  proto.root_work();
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const std::string out_dir = opt.out_dir.empty() ? "out/" + spec.name : opt.out_dir;
   const fs::path out(out_dir);
@@ -188,14 +309,18 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
   const Provenance prov = capture_provenance();
 
   const auto wall0 = std::chrono::steady_clock::now();
+  proto.symmetric();  // every rank sets the case up and fails alike
   CaseSetup<D> setup = setup_case<D>(spec);
+  proto.root_work();
   RunSummary sum;
   for (const auto& b : setup.bodies) (b.fluid ? sum.fluid : sum.boundary) += b.particles;
   const std::size_t n_total = sum.fluid + sum.boundary;
 
   log << "case " << spec.name << " (" << spec.file << "): " << D << "D, dp = " << spec.dp
       << " m, h = " << setup.params.h << " m, c0 = " << setup.params.c0 << " m/s, "
-      << omp_get_max_threads() << " thread(s)\n";
+      << omp_get_max_threads() << " thread(s)"
+      << (comm.size() > 1 ? " on each of " + std::to_string(comm.size()) + " MPI ranks" : "")
+      << "\n";
   for (const auto& b : setup.bodies)
     log << "  body " << b.name << " (" << (b.fluid ? "fluid" : "boundary") << "): " << b.particles
         << " particles\n";
@@ -309,9 +434,6 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
                                   " particles but " + spec.file + " makes " +
                                   std::to_string(n_total) +
                                   ": restart needs the case the run was started with");
-    sim.emplace(make_simulation<D>(setup, std::move(c.particles)));
-    sim->restore(c.clock);
-    sim->restore_hooks(c.schedule);
     if (c.tag.identity.empty())
       throw std::invalid_argument(
           ck +
@@ -325,13 +447,20 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
           tag.identity.substr(0, 12) + " against " + c.tag.identity.substr(0, 12) +
           "): a restart continues the case the run was started with; run this one with "
           "--overwrite or -o another folder");
+    proto.agree();  // the other ranks read the checkpoint now
+    sim.emplace(
+        build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm, opt.rebalance_every));
+    sim->restore(c.clock);
+    sim->restore_hooks(c.schedule);
     schedule = c.schedule;
     resume_after = c.clock.time;
     sum.restarted_from = c.clock.time;
     log << "  restart from " << ck << " at t = " << c.clock.time << " s, step " << c.clock.steps
         << "\n";
   } else {
-    sim.emplace(make_simulation<D>(setup, std::move(setup.particles)));
+    proto.agree();
+    sim.emplace(
+        build_simulation<D>(setup, std::move(setup.particles), nullptr, comm, opt.rebalance_every));
   }
   if (opt.restart) {
     // Exclusions by face (kept in the checkpoint's schedule; absent in older checkpoints).
@@ -351,7 +480,12 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
     }
     sim->restore_faces(f);
   }
-  Watchdog<D> watchdog(spec.watchdog, *sim, setup.floor);
+  // What the outputs read: the simulation itself, or every rank's particles gathered here.
+  RunView<D> view(*sim, comm);
+  proto.symmetric();
+  view.sync();
+  proto.root_work();
+  Watchdog<D> watchdog(spec.watchdog, view, setup.floor);
   {
     std::vector<std::string> names;
     for (const auto& b : setup.bodies) names.push_back(b.name);
@@ -409,46 +543,46 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
 
   auto write_snapshot = [&]() {
     const double t0 = omp_get_wtime();
-    const auto& p = sim->pressure();
+    const auto& p = view.pressure();
     char num[32];
     std::snprintf(num, sizeof(num), "_%04d.vtp", snapshot);
     if (spec.vtk) {
       const std::string rel = "vtk/" + spec.name + num;
-      write_vtp<D>((out / rel).string(), sim->particles(), p, ParticleFilter::All, &meta.body_names,
+      write_vtp<D>((out / rel).string(), view.particles(), p, ParticleFilter::All, &meta.body_names,
                    sim->time());
       pvd.add(sim->time(), rel);
       if (spec.vtk_split) {
         const std::string rf = "vtk/" + spec.name + "_fluid" + num,
                           rb = "vtk/" + spec.name + "_boundary" + num;
-        write_vtp<D>((out / rf).string(), sim->particles(), p, ParticleFilter::Fluid,
+        write_vtp<D>((out / rf).string(), view.particles(), p, ParticleFilter::Fluid,
                      &meta.body_names, sim->time());
-        write_vtp<D>((out / rb).string(), sim->particles(), p, ParticleFilter::Boundary,
+        write_vtp<D>((out / rb).string(), view.particles(), p, ParticleFilter::Boundary,
                      &meta.body_names, sim->time());
         pvd_fluid.add(sim->time(), rf);
         pvd_bound.add(sim->time(), rb);
       }
     }
-    if (h5) h5->write_snapshot<D>(sim->steps(), sim->time(), sim->particles(), p);
+    if (h5) h5->write_snapshot<D>(sim->steps(), sim->time(), view.particles(), p);
     ++snapshot;
     ++sum.snapshots;
     sum.output_seconds += omp_get_wtime() - t0;
   };
   auto write_diag = [&]() {
-    const auto tot = fluid_totals(sim->particles());
+    const auto tot = fluid_totals(view.particles());
     diag.write_row(
         sim->time(),
         {double(sim->steps()), sim->dt(), double(tot.count), tot.mass, tot.kinetic_energy,
-         tot.max_speed, surge_front(sim->particles(), up, setup.floor, band, spec.dp)},
+         tot.max_speed, surge_front(view.particles(), up, setup.floor, band, spec.dp)},
         std::vector<bool>(7, true));
   };
   auto watch = [&]() {
-    if (watchdog.check(*sim)) log << "  " << watchdog.warning() << "\n" << std::flush;
+    if (watchdog.check(view)) log << "  " << watchdog.warning() << "\n" << std::flush;
   };
   auto write_checkpoint_now = [&]() {
     watch();  // a checkpoint is written only while the run is healthy
     const double t0 = omp_get_wtime();
     std::map<std::string, double> s;
-    const FaceExclusions& fx = sim->excluded_faces();
+    const FaceExclusions& fx = view.excluded_faces();
     for (int k = 0; k < FaceExclusions::kFaces; ++k) {
       const std::string key = std::string("excluded.") + FaceExclusions::name(k) + ".";
       const auto u = static_cast<std::size_t>(k);
@@ -464,9 +598,18 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
     s["snapshot"] = snapshot;
     gauges.save_schedule(s);
     sim->save_hooks(s);
+    if (view.decomposed()) {
+      // Slab bounds and each rank's share of the file, for a restart on as many ranks.
+      sim->exchange()->save(s);
+      const auto& l = view.layout();
+      for (std::size_t r = 0; r < l.active.size(); ++r) {
+        s["decomposition.active." + std::to_string(r)] = static_cast<double>(l.active[r]);
+        s["decomposition.excluded." + std::to_string(r)] = static_cast<double>(l.excluded[r]);
+      }
+    }
     diag.flush();
     gauges.flush();
-    write_checkpoint<D>(ck_path, sim->particles(), sim->clock(), s, tag);
+    write_checkpoint<D>(ck_path, view.particles(), view.clock(), s, tag);
     last_checkpoint = sim->time();
     sum.output_seconds += omp_get_wtime() - t0;
   };
@@ -477,7 +620,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
       write_diag();
       diag_timer.advance(t);
     }
-    if (gauges.due(t)) gauges.sample(t, sim->particles(), sim->pressure(), sim->acceleration());
+    if (gauges.due(t)) gauges.sample(t, view.particles(), view.pressure(), view.acceleration());
     if (out_timer.due(t) || (final_state && out_timer.next > t + 1e-12 && snapshot > 0)) {
       write_snapshot();
       out_timer.advance(t);
@@ -488,6 +631,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
     }
   };
   if (!opt.restart) outputs(false);
+  proto.agree();
 
   const bool tty = isatty(fileno(stderr));
   const auto loop0 = std::chrono::steady_clock::now();
@@ -496,10 +640,16 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
   const double time0 = sim->time();
   try {
     while (sim->time() < t_end) {
-      if (const int sig = stop_requested()) {
+      const int sig = view.decomposed()
+                          ? static_cast<int>(comm.max(static_cast<double>(stop_requested())))
+                          : stop_requested();
+      if (sig) {
         // SIGINT/SIGTERM: everything consistent on disk at this step, then leave.
         if (opt.progress && tty) std::fprintf(stderr, "\n");
+        view.sync();
+        proto.root_work();
         write_checkpoint_now();
+        proto.agree();
         std::ostringstream m;
         m << "stopped by "
           << (sig == SIGINT    ? "SIGINT"
@@ -510,7 +660,15 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
         throw Interrupted(sig, m.str());
       }
       sim->step();
-      if (gauges.averages()) gauges.accumulate(sim->dt(), sim->particles(), sim->pressure());
+      if (view.decomposed()) {
+        // Gather only when something reads the particles after this step.
+        const double t = sim->time();
+        const bool need = gauges.averages() || watchdog.due(sim->steps()) || gauges.due(t) ||
+                          diag_timer.due(t) || out_timer.due(t) || ck_timer.due(t) || t >= t_end;
+        if (comm.max(need ? 1.0 : 0.0) > 0.0) view.sync();
+        proto.root_work();
+      }
+      if (gauges.averages()) gauges.accumulate(sim->dt(), view.particles(), view.pressure());
       if (watchdog.due(sim->steps())) watch();
       outputs(sim->time() >= t_end);
       const auto now = std::chrono::steady_clock::now();
@@ -531,6 +689,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
           std::fflush(stderr);
         }
       }
+      proto.agree();
     }
   } catch (const InstabilityError& e) {
     if (opt.progress && tty) std::fprintf(stderr, "\n");
@@ -557,8 +716,9 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
   const long loop_steps = sim->steps() - step0;
   sum.particle_steps_per_second =
       static_cast<double>(n_total) * loop_steps / std::max(loop_s, 1e-9);
-  sum.excluded = sim->excluded();
-  sum.faces = sim->excluded_faces();
+  proto.symmetric();  // the other ranks are done
+  sum.excluded = view.excluded();
+  sum.faces = view.excluded_faces();
   sum.excluded_fluid_fraction = watchdog.excluded_fraction();
   sum.excluded_warning = watchdog.warned();
   sum.phases = sim->phase_times();
@@ -587,7 +747,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log) {
       << watchdog.limits().warn_excluded_fraction * 100 << " %)";
   s << "\n";
   {
-    const FaceExclusions& fx = sim->excluded_faces();
+    const FaceExclusions& fx = view.excluded_faces();
     for (int k = 0; k < FaceExclusions::kFaces; ++k) {
       const auto u = static_cast<std::size_t>(k);
       if (fx.particles[u] == 0) continue;
@@ -627,15 +787,31 @@ RunSummary run_case(const CaseSpec& spec, const RunOptions& options) {
   auto ended = [&](const std::string& how) {
     if (log.attached()) log.file_line(how.c_str());
   };
+  // Rank 0's failures in its own work reach the other ranks with its exit code.
+  RunProtocol proto(parallel::Comm::world());
   try {
-    return spec.dim == 2 ? run_dim<2>(spec, options, log) : run_dim<3>(spec, options, log);
+    return spec.dim == 2 ? run_dim<2>(spec, options, log, proto)
+                         : run_dim<3>(spec, options, log, proto);
+  } catch (const PeerFailed&) {
+    throw;
   } catch (const Interrupted& e) {
+    proto.fail(e.exit_code());
     ended(std::string("swell: ") + e.what());
     throw;
   } catch (const InstabilityError& e) {
+    proto.fail(3);
     ended(std::string("error: the run went unstable: ") + e.what());
     throw;
+  } catch (const CaseError& e) {
+    proto.fail(2);
+    ended(std::string("error: ") + e.what());
+    throw;
+  } catch (const std::invalid_argument& e) {
+    proto.fail(2);
+    ended(std::string("error: ") + e.what());
+    throw;
   } catch (const std::exception& e) {
+    proto.fail(1);
     ended(std::string("error: ") + e.what());
     throw;
   }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -72,6 +73,15 @@ int main(int argc, char** argv) {
   // (ulimit -f) makes writes fail with EFBIG, reported like a full disk, instead of killing.
   swell::hdf5_no_atexit();
   std::signal(SIGXFSZ, SIG_IGN);
+  // MPI for the process's lifetime when started by mpirun (else nothing). Ranks other than 0
+  // print nothing: rank 0 reports for the whole run (its errors, progress and summary).
+  swell::parallel::Environment mpi(argc, argv);
+  const bool rank0 = swell::parallel::Comm::world().rank() == 0;
+  static std::ofstream silent;  // never opened: what is written to it goes nowhere
+  if (!rank0) {
+    std::cout.rdbuf(silent.rdbuf());
+    std::cerr.rdbuf(silent.rdbuf());
+  }
 
   CLI::App app{"Swell: weakly-compressible SPH for coastal and hydraulic engineering"};
   app.require_subcommand(1);
@@ -91,6 +101,10 @@ int main(int argc, char** argv) {
   bool overwrite = false;
   auto* restart_opt = run->add_option(
       "--restart", restart_dir, "continue the run in this output folder from its last checkpoint");
+  long rebalance_every = 100;
+  run->add_option("--rebalance", rebalance_every,
+                  "under mpirun: balance the slabs by particle count every N steps (0: never)")
+      ->check(CLI::NonNegativeNumber);
   run->add_flag("--overwrite", overwrite,
                 "replace the run the output folder already holds (else such a folder is refused)")
       ->excludes(restart_opt);
@@ -276,14 +290,13 @@ int main(int argc, char** argv) {
 
   try {
     if (*run) {
-      // The decomposition (parallel/) is not wired into the time loop yet: N ranks would
-      // each run the whole case into the same folder. Refused before anything is written.
-      if (const int ranks = swell::parallel::launcher_world_size(); ranks > 1)
+      // Under mpirun every rank runs the case on its slab; a build without MPI cannot.
+      if (const int ranks = swell::parallel::launcher_world_size();
+          ranks > 1 && swell::parallel::Comm::world().size() != ranks)
         throw std::invalid_argument(
             "swell run: started on " + std::to_string(ranks) +
-            " MPI ranks, but multi-rank runs are not implemented yet (the slab decomposition "
-            "in parallel/ is built and tested, the time loop does not use it); run one rank, "
-            "with OpenMP threads (-t N)");
+            " MPI ranks, but this swell was built without MPI (install libopenmpi-dev and "
+            "rebuild; scripts/setup does); run one rank, with OpenMP threads (-t N)");
       const swell::CaseSpec spec = swell::load_case_file(case_path, run_sets);
       swell::RunOptions opt;
       if (!restart_dir.empty()) {
@@ -296,7 +309,8 @@ int main(int argc, char** argv) {
       opt.out_dir = out_dir;
       opt.overwrite = overwrite;
       opt.threads = threads;
-      opt.progress = !quiet;
+      opt.progress = !quiet && rank0;
+      opt.rebalance_every = rebalance_every;
       swell::install_stop_handlers();
       swell::run_case(spec, opt);
     } else if (*fill) {
@@ -383,6 +397,8 @@ int main(int argc, char** argv) {
                                     " (and the top-level keys); `swell help case` lists them all");
       }
     }
+  } catch (const swell::PeerFailed& e) {
+    return e.exit_code();  // rank 0 said why
   } catch (const swell::Interrupted& e) {
     std::cerr << "swell: " << e.what() << "\n";
     return e.exit_code();

@@ -51,7 +51,7 @@ void unpack(ParticleSet<D>& ps, std::size_t i, const std::byte* in) {
   ps.for_each_field([&](const FieldInfo& f, auto& a) {
     if (!ps.enabled(f)) return;
     using T = typename std::decay_t<decltype(a)>::value_type;
-    std::memcpy(&a[i], in, sizeof(T));
+    std::memcpy(static_cast<void*>(&a[i]), in, sizeof(T));
     in += sizeof(T);
   });
 }

@@ -75,7 +75,10 @@ class Watchdog {
  public:
   // `floor`: the lowest initial fluid level along "up" (CaseSetup::floor): water starting below
   // every wall is not a leak. The initial fluid mass counts excluded particles too (restart).
-  Watchdog(const WatchdogLimits& limits, const Simulation<D>& sim, double floor) : lim_(limits) {
+  // `sim`: the Simulation, or anything with its particles(), params(), time(), steps(),
+  // excluded(), excluded_faces() and worst_density_exclusion() (apps/run_view.hpp).
+  template <class Sim>
+  Watchdog(const WatchdogLimits& limits, const Sim& sim, double floor) : lim_(limits) {
     const ParticleSet<D>& ps = sim.particles();
     const Vec<D> g = sim.params().gravity.template head<D>();
     for (int d = 0; d < D; ++d)
@@ -108,7 +111,8 @@ class Watchdog {
 
   // Returns true once, when the excluded fluid mass first passes warn_excluded_fraction; the
   // warning text is then in warning(). Throws InstabilityError when a limit is passed.
-  bool check(const Simulation<D>& sim) {
+  template <class Sim>
+  bool check(const Sim& sim) {
     const ParticleSet<D>& ps = sim.particles();
     double mass = 0.0, wall_rho = 0.0, deepest = 0.0;
     std::size_t wall_i = ps.size(), deep_i = ps.size(), penetrated = 0;
@@ -183,7 +187,8 @@ class Watchdog {
   const std::string& warning() const { return warning_; }
 
   // "N through x+ (t = a-b s), ..., M density out of range, K non-finite" for messages.
-  static std::string by_face(const Simulation<D>& sim) {
+  template <class Sim>
+  static std::string by_face(const Sim& sim) {
     const FaceExclusions& f = sim.excluded_faces();
     std::ostringstream m;
     const char* sep = "";
@@ -215,7 +220,8 @@ class Watchdog {
     return m.str();
   }
 
-  [[noreturn]] void throw_excluded(const Simulation<D>& sim, double t, long step) const {
+  template <class Sim>
+  [[noreturn]] void throw_excluded(const Sim& sim, double t, long step) const {
     const FaceExclusions& f = sim.excluded_faces();
     const ExclusionCounts& e = sim.excluded();
     int face = -1;

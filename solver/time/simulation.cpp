@@ -162,6 +162,13 @@ void Simulation<D>::evaluate() {
 }
 
 template <int D>
+void Simulation<D>::redistribute() {
+  if (!exchange_) return;
+  grid_.drop_ghosts(ps_);
+  exchange_->migrate(ps_, -1);
+}
+
+template <int D>
 void Simulation<D>::refresh_images() {
   if (exchange_)
     exchange_->refresh(ps_);  // every rank calls it, with images or not

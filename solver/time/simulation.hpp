@@ -61,6 +61,10 @@ class Simulation {
   const PhaseTimes& phase_times() const { return times_; }
   // The decomposition of a run on several ranks (null on one rank).
   const Exchange<D>* exchange() const { return exchange_.get(); }
+  // Several ranks, between steps: sends the particles that left this rank's part to their
+  // owners now (no rebalance). acceleration() and density_rate() are stale afterwards.
+  // Collective; nothing on one rank.
+  void redistribute();
   std::size_t fluid_count() const;
 
   // Pressure of every active particle in the current order (recomputed from density).

@@ -1,0 +1,34 @@
+#!/bin/sh
+# `mpirun -np N swell run` end to end (ctest Mpi.RunOnSeveralRanks): the 2D dam break
+# (a/dp = 20, to 0.06 s)
+#   - on 1 rank, and on 2 ranks: gauges, diagnostics and the final checkpoint agree
+#     (check_ranks.py; the bounds and why are there);
+#   - on 2 ranks to 0.03 s, then restarted on 2 ranks to 0.06 s: bit for bit the
+#     uninterrupted 2-rank run; restarted on 1 and on 3 ranks: within the same bounds;
+#   - a second run into a folder that holds one is refused by rank 0 with exit 2, the others
+#     leave with it (no rank waits forever), and the folder keeps its files unchanged.
+# Usage: run_ranks.sh SWELL MPIRUN CASE WORKDIR
+set -eu
+swell=$1 mpirun=$2 case=$3 work=$4
+here=$(cd "$(dirname "$0")" && pwd)
+rm -rf "$work"; mkdir -p "$work"; cd "$work"
+sets="--set dp=0.0028575"
+run() {  # ranks, then swell run arguments
+  n=$1; shift
+  if [ "$n" = 1 ]; then "$swell" run "$case" -q -t 1 $sets "$@"
+  else "$mpirun" --oversubscribe -np "$n" "$swell" run "$case" -q -t 1 $sets "$@"; fi
+}
+run 1 -o r1 --set time.end=0.06 > r1.log
+run 2 -o r2 --set time.end=0.06 > r2.log
+run 2 -o half --set time.end=0.03 > half.log
+for n in 1 2 3; do
+  cp -r half "re$n"
+  run "$n" --restart "re$n" --set time.end=0.06 > "re$n.log"
+done
+# Refused: the folder already holds a run (rank 0's check); its checkpoint stays as it was.
+sum0=$(md5sum r2/checkpoint.h5)
+rc=0; run 2 -o r2 --set time.end=0.06 > refused.log 2>&1 || rc=$?
+if [ "$rc" != 2 ]; then echo "FAIL: a run into a used folder on 2 ranks exited $rc, not 2"; cat refused.log; exit 1; fi
+grep -q "already holds a run" refused.log || { echo "FAIL: no message from rank 0"; cat refused.log; exit 1; }
+[ "$(md5sum r2/checkpoint.h5)" = "$sum0" ] || { echo "FAIL: the refused run changed r2"; exit 1; }
+exec python3 "$here/check_ranks.py" "$work"
