@@ -199,7 +199,7 @@ class RunProtocol {
 // particles (`all`: the set-up's or a checkpoint's) with a SlabExchange. A checkpoint written
 // on the same number of ranks (`saved` has its decomposition) gives each rank back exactly the
 // particles it held, in their order, and the slab bounds; otherwise the slabs are balanced by
-// particle count along the domain's longest axis.
+// fluid particle count along the domain's longest axis.
 template <int D>
 Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
                                const std::map<std::string, double>* saved,
@@ -233,13 +233,45 @@ Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
     const int axis = parallel::longest_axis<D>(pr.domain_min.template head<D>(),
                                                pr.domain_max.template head<D>());
     slabs = parallel::balanced_slabs(all, axis, pr.domain_min[axis], pr.domain_max[axis], width,
-                                     parallel::Comm::self(), 4096, n);
+                                     parallel::Comm::self(), 4096, n, true);
     mine = parallel::share_by_slabs(all, slabs, comm.rank());
   }
   all = ParticleSet<D>();  // the whole set is not kept on any rank
   return make_simulation<D>(
       setup, std::move(mine),
       std::make_unique<parallel::SlabExchange<D>>(comm, slabs, width, rebalance_every));
+}
+
+// The decomposition's figures for the run summary (collective; every rank calls it after the
+// loop, rank 0 gets the text): halo images and bytes per step per rank, migration, the time
+// in the exchange (communication and packing) against the loop, and the balance now.
+template <int D>
+std::string decomposition_report(const Simulation<D>& sim, const parallel::Comm& comm,
+                                 double loop_seconds, long loop_steps) {
+  const auto* ex = dynamic_cast<const parallel::SlabExchange<D>*>(sim.exchange());
+  if (!ex || comm.size() == 1) return {};
+  const parallel::HaloStats& h = ex->stats();
+  const double n = comm.size(), steps = std::max(1L, loop_steps);
+  const double images = comm.sum(static_cast<double>(h.images)) / n / steps;
+  const double bytes = comm.sum(static_cast<double>(h.image_bytes)) / n / steps;
+  const double migrated = comm.sum(static_cast<double>(h.migrated)) / n / steps;
+  const double ex_max = comm.max(h.seconds), ex_mean = comm.sum(h.seconds) / n;
+  const double loop_max = comm.max(loop_seconds);
+  const auto counts = comm.gather_all(sim.fluid_count());
+  std::uint64_t lo = counts.front(), hi = counts.front(), total = 0;
+  for (auto c : counts) lo = std::min(lo, c), hi = std::max(hi, c), total += c;
+  std::ostringstream o;
+  o << std::setprecision(3);
+  o << "  decomposition:  " << comm.size() << " ranks, slabs along "
+    << "xyz"[ex->slabs().axis] << " (halo width " << ex->width() << " m), rebalanced "
+    << h.rebalances << " times\n"
+    << "    per rank and step: " << images << " halo images (two builds), " << bytes / 1024.0
+    << " KiB received, " << migrated << " particles migrated\n"
+    << "    exchange time: " << ex_mean << " s mean, " << ex_max << " s max over ranks, "
+    << 100.0 * ex_max / std::max(loop_max, 1e-9) << " % of the time loop\n"
+    << "    fluid particles per rank now: " << lo << " - " << hi << " (imbalance "
+    << static_cast<double>(hi) * n / std::max<double>(1.0, static_cast<double>(total)) << ")\n";
+  return o.str();
 }
 
 // Ranks 1..N-1 of a decomposed run: the same simulation calls and collectives as rank 0's
@@ -268,6 +300,8 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
   RunView<D> view(*sim, comm);
   view.sync();
   proto.agree();  // rank 0: watchdog, output files, the first outputs
+  const auto loop0 = std::chrono::steady_clock::now();
+  const long step0 = sim->steps();
   while (sim->time() < spec.t_end) {
     if (const int sig = static_cast<int>(comm.max(static_cast<double>(stop_requested())))) {
       view.sync();
@@ -278,6 +312,9 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
     if (comm.max(0.0) > 0.0) view.sync();
     proto.agree();  // rank 0: gauges, watchdog, outputs
   }
+  const double loop_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - loop0).count();
+  decomposition_report(*sim, comm, loop_s, sim->steps() - step0);
   return {};
 }
 
@@ -306,7 +343,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
     }
   }
   const CaseTag tag{case_identity(spec), spec.name, spec.file};
-  const Provenance prov = capture_provenance();
+  Provenance prov = capture_provenance();
+  prov.ranks = comm.size();
 
   const auto wall0 = std::chrono::steady_clock::now();
   proto.symmetric();  // every rank sets the case up and fails alike
@@ -756,6 +794,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
         << "), t = " << fx.first_time[u] << " - " << fx.last_time[u] << " s\n";
     }
   }
+  s << decomposition_report(*sim, comm, loop_s, loop_steps);
   s << "  output:         " << out_dir << " (" << sum.snapshots << " snapshots, " << pvd.path()
     << ")\n";
   log << s.str();

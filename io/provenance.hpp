@@ -17,7 +17,7 @@ struct Provenance {
   std::string build;      // build type and flags, e.g. "Release: -O3 -DNDEBUG ... -march=native"
   std::string command;    // the process's command line, arguments shell-quoted
   int threads = 0;        // OpenMP threads the command runs with
-  int ranks = 1;          // MPI ranks (1: no MPI yet)
+  int ranks = 1;          // MPI ranks (`swell run` under mpirun sets it)
   std::string date;       // start, UTC ISO 8601 (2026-12-02T17:40:12Z)
   std::string host;       // host name
   std::string cpu;        // /proc/cpuinfo "model name" (as lscpu shows), "unknown" if absent

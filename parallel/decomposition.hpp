@@ -93,10 +93,12 @@ int longest_axis(const Vec<D>& lo, const Vec<D>& hi) {
 // least min_width wide (the kernel support); throws if the domain cannot hold size() such
 // slabs. Collective: every rank calls it with the same arguments and gets the same bounds.
 // `count` > 0: that many slabs instead of one per rank (e.g. from the whole set on every rank
-// with Comm::self(), at the start of a run).
+// with Comm::self(), at the start of a run). `fluid_only`: count the fluid particles only (the
+// time loop's weight: a step's work is in the fluid's pair terms; DBC walls see fluid only and
+// dry wall cells are skipped, so a slab of walls costs little); with no fluid, all particles.
 template <int D>
 Slabs balanced_slabs(const ParticleSet<D>& ps, int axis, double lo, double hi, double min_width,
-                     const Comm& comm, int bins = 4096, int count = 0) {
+                     const Comm& comm, int bins = 4096, int count = 0, bool fluid_only = false) {
   const int n = count > 0 ? count : comm.size();
   if (!(hi - lo >= n * min_width))
     throw std::invalid_argument(
@@ -107,13 +109,15 @@ Slabs balanced_slabs(const ParticleSet<D>& ps, int axis, double lo, double hi, d
   const double w = (hi - lo) / bins;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const double x = ps.pos[i][axis];
-    if (!std::isfinite(x)) continue;
+    if (!std::isfinite(x) || (fluid_only && !is_fluid(ps.role[i]))) continue;
     const int b = std::clamp(static_cast<int>((x - lo) / w), 0, bins - 1);
     ++hist[static_cast<std::size_t>(b)];
   }
   comm.sum_in_place(hist);
   std::uint64_t total = 0;
   for (auto c : hist) total += c;
+  if (total == 0 && fluid_only)
+    return balanced_slabs(ps, axis, lo, hi, min_width, comm, bins, count, false);
   Slabs s = even_slabs(axis, lo, hi, n);
   if (total == 0 || n == 1) return s;
   // Cut r at the first bin edge where the running count reaches r N / n, then push the cuts

@@ -1,9 +1,9 @@
 // The slab decomposition in the time loop (issue #16): SlabExchange is the Exchange
 // (solver/time/exchange.hpp) of a run on several ranks.
 //
-// - migrate: every `rebalance_every` steps the slab bounds are balanced by particle count
-//   (balanced_slabs), then the particles that left this rank's slab go to their owners
-//   (migrate, whole records from the field table).
+// - migrate: every `rebalance_every` steps the slab bounds are balanced by fluid particle count
+//   (balanced_slabs, fluid_only: the work of a step is the fluid's), then the particles that left
+//   this rank's slab go to their owners (migrate, whole records from the field table).
 // - build_halo (after the sort): the active particles within `width` of a slab face are sent,
 //   whole records, to the rank on the other side, which stores them as images after its own
 //   particles, placed in its cell grid (CellGrid::place_remote_images). `width` is the kernel
@@ -66,7 +66,8 @@ class SlabExchange final : public Exchange<D> {
     const double t0 = wtime();
     if (rebalance_every_ > 0 && step > 0 && step % rebalance_every_ == 0 &&
         step != last_rebalance_) {
-      slabs_ = balanced_slabs(ps, slabs_.axis, slabs_.lo.front(), slabs_.lo.back(), width_, comm_);
+      slabs_ = balanced_slabs(ps, slabs_.axis, slabs_.lo.front(), slabs_.lo.back(), width_, comm_,
+                              4096, 0, true);
       last_rebalance_ = step;
       ++stats_.rebalances;
     }

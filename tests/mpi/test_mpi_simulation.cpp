@@ -48,7 +48,7 @@ Decomposed run_decomposed(const CaseSetup<2>& setup, int steps, long rebalance,
   const double width = halo_width(setup) * width_factor;
   const Slabs slabs =
       balanced_slabs(setup.particles, 0, setup.params.domain_min[0], setup.params.domain_max[0],
-                     width, Comm::self(), 4096, comm.size());
+                     width, Comm::self(), 4096, comm.size(), true);
   auto ex = std::make_unique<SlabExchange<2>>(comm, slabs, width, rebalance);
   const SlabExchange<2>* exch = ex.get();
   Simulation<2> sim =
