@@ -195,6 +195,25 @@ class RunProtocol {
   bool pending_ = false;
 };
 
+// A restart continues the case its checkpoint was written by (the case identity: text, --set
+// edits, input files, all but time.end). Every rank checks, so every rank refuses alike.
+void check_checkpoint_case(const std::string& ck, const CaseTag& saved, const CaseTag& tag,
+                           const std::string& case_file) {
+  if (saved.identity.empty())
+    throw std::invalid_argument(
+        ck +
+        " does not say which case wrote it (a checkpoint of an older Swell): restart "
+        "needs a checkpoint written by this version; run the case afresh with --overwrite");
+  if (saved.identity != tag.identity)
+    throw std::invalid_argument(
+        ck + " was written by case '" + saved.name + "' (" + saved.file + "), and " + case_file +
+        " differs from it (case text, --set edits or an input file, other than time.end; case "
+        "identity " +
+        tag.identity.substr(0, 12) + " against " + saved.identity.substr(0, 12) +
+        "): a restart continues the case the run was started with; run this one with "
+        "--overwrite or -o another folder");
+}
+
 // This rank's simulation. One rank: the case's, as always. Several: this rank's slab of the
 // particles (`all`: the set-up's or a checkpoint's) with a SlabExchange. A checkpoint written
 // on the same number of ranks (`saved` has its decomposition) gives each rank back exactly the
@@ -293,6 +312,7 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
     clock.excluded = {};  // rank 0 carries the run's counts
     sim->restore(clock);
     sim->restore_hooks(c.schedule);
+    check_checkpoint_case(ck, c.tag, CaseTag{case_identity(spec), spec.name, spec.file}, spec.file);
   } else {
     sim.emplace(
         build_simulation<D>(setup, std::move(setup.particles), nullptr, comm, opt.rebalance_every));
@@ -472,24 +492,12 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
                                   " particles but " + spec.file + " makes " +
                                   std::to_string(n_total) +
                                   ": restart needs the case the run was started with");
-    if (c.tag.identity.empty())
-      throw std::invalid_argument(
-          ck +
-          " does not say which case wrote it (a checkpoint of an older Swell): restart "
-          "needs a checkpoint written by this version; run the case afresh with --overwrite");
-    if (c.tag.identity != tag.identity)
-      throw std::invalid_argument(
-          ck + " was written by case '" + c.tag.name + "' (" + c.tag.file + "), and " + spec.file +
-          " differs from it (case text, --set edits or an input file, other than time.end; case "
-          "identity " +
-          tag.identity.substr(0, 12) + " against " + c.tag.identity.substr(0, 12) +
-          "): a restart continues the case the run was started with; run this one with "
-          "--overwrite or -o another folder");
     proto.agree();  // the other ranks read the checkpoint now
     sim.emplace(
         build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm, opt.rebalance_every));
     sim->restore(c.clock);
     sim->restore_hooks(c.schedule);
+    check_checkpoint_case(ck, c.tag, tag, spec.file);  // every rank, alike
     schedule = c.schedule;
     resume_after = c.clock.time;
     sum.restarted_from = c.clock.time;
