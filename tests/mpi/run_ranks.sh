@@ -6,17 +6,21 @@
 #   - on 2 ranks to 0.03 s, then restarted on 2 ranks to 0.06 s: bit for bit the
 #     uninterrupted 2-rank run; restarted on 1 and on 3 ranks: within the same bounds;
 #   - a second run into a folder that holds one is refused by rank 0 with exit 2, the others
-#     leave with it (no rank waits forever), and the folder keeps its files unchanged.
+#     leave with it (no rank waits forever), and the folder keeps its files unchanged;
+#   - the watchdog (rank 0's check) stops a run on 2 ranks with exit 3.
+# Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
 # Usage: run_ranks.sh SWELL MPIRUN CASE WORKDIR
 set -eu
 swell=$1 mpirun=$2 case=$3 work=$4
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
-sets="--set dp=0.0028575"
+# A sensor face too: it averages over each interval, so rank 0 gathers after every step.
+face='gauges.4={name: face, kind: pressure, at: [0.28575, 0.005], normal: [-1, 0], size: 0.004}'
 run() {  # ranks, then swell run arguments
   n=$1; shift
-  if [ "$n" = 1 ]; then "$swell" run "$case" -q -t 1 $sets "$@"
-  else "$mpirun" --oversubscribe -np "$n" "$swell" run "$case" -q -t 1 $sets "$@"; fi
+  if [ "$n" = 1 ]; then "$swell" run "$case" -q -t 1 --set dp=0.0028575 --set "$face" "$@"
+  else "$mpirun" --oversubscribe -np "$n" "$swell" run "$case" -q -t 1 --set dp=0.0028575 \
+    --set "$face" "$@"; fi
 }
 run 1 -o r1 --set time.end=0.06 > r1.log
 run 2 -o r2 --set time.end=0.06 > r2.log
@@ -31,4 +35,8 @@ rc=0; run 2 -o r2 --set time.end=0.06 > refused.log 2>&1 || rc=$?
 if [ "$rc" != 2 ]; then echo "FAIL: a run into a used folder on 2 ranks exited $rc, not 2"; cat refused.log; exit 1; fi
 grep -q "already holds a run" refused.log || { echo "FAIL: no message from rank 0"; cat refused.log; exit 1; }
 [ "$(md5sum r2/checkpoint.h5)" = "$sum0" ] || { echo "FAIL: the refused run changed r2"; exit 1; }
+# The watchdog (rank 0's own check) stops a run: every rank leaves with exit 3.
+rc=0; run 2 -o wd --set time.end=0.06 --set watchdog.max_density=1.0001 > wd.log 2>&1 || rc=$?
+if [ "$rc" != 3 ]; then echo "FAIL: a watchdog stop on 2 ranks exited $rc, not 3"; cat wd.log; exit 1; fi
+grep -q "went unstable" wd.log || { echo "FAIL: no watchdog message"; cat wd.log; exit 1; }
 exec python3 "$here/check_ranks.py" "$work"
