@@ -3,13 +3,16 @@
 
 Inputs measured here (README "Several ranks (MPI)"; bench/RESULTS.md): the cost of one
 particle-step on one thread (B3D, 1.60 M particle-steps/s), the record sizes the exchange sends
-(3D: 103 B per halo image in a build, 56 B in a refresh), the number of collective calls per
-step (2 evaluations x (migration, halo build, refresh) + 1 refresh = 7 exchanges of an
-all-to-all of counts and an all-to-allv of data each, and 6 small allreduces). Assumed, for a
+(3D: 103 B per halo image in a build, 56 B in a refresh), the calls per step: 2 migrations and 5 halo
+exchanges (2 builds, 3 refreshes), each two rounds of point-to-point messages with the two
+neighbouring ranks (sizes, then data), one allreduce per migration (whether any particle jumps
+further than one slab: then, and after a rebalance, an all-to-all; rare, left out) and 6 more
+small allreduces. Assumed, for a
 typical cluster (state them when quoting): one rank per node of T = 32 threads with perfect
 OpenMP scaling, latency 2 us, bandwidth 10 GB/s per node; an all-to-all of counts costs
 latency x log2 P (Bruck), an all-to-allv latency x P (OpenMPI's linear exchange: every rank
-posts P messages, even empty ones), an allreduce latency x log2 P. Slabs along one axis: a
+posts P messages, even empty ones), a neighbour round one latency, an allreduce latency x
+log2 P. Slabs along one axis: a
 rank's halo is its two faces, independent of P in weak scaling.
 
 The output gather to rank 0 is left out: at these sizes it does not fit one node (see
@@ -35,7 +38,7 @@ def step_time(n_rank, ranks, cross_dp2):
     """Seconds per step: compute, latency, halo bandwidth (cross_dp2: slab face in dp^2)."""
     compute = n_rank * COST / a.threads
     lg = math.log2(max(ranks, 2))
-    latency = a.latency * (7 * lg + 7 * ranks + 6 * lg)
+    latency = a.latency * (2 * (lg + 2) + 5 * 2 + 6 * lg)
     images = 2 * cross_dp2 * SUPPORT_DP  # both faces
     halo = images * (2 * BUILD_B + 3 * REFRESH_B) / a.bandwidth
     return compute, latency, halo

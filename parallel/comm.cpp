@@ -1,5 +1,6 @@
 #include "parallel/comm.hpp"
 
+#include <cstdint>
 #include <cstdlib>
 #include <numeric>
 #include <stdexcept>
@@ -127,6 +128,56 @@ void Comm::alltoallv(const std::vector<std::byte>& send, const std::vector<int>&
   if (recv.size() < total) recv.resize(total);
   MPI_Alltoallv(send.data(), send_count.data(), send_displ.data(), MPI_BYTE, recv.data(),
                 recv_count.data(), recv_displ.data(), MPI_BYTE, MPI_COMM_WORLD);
+#endif
+}
+
+void Comm::neighbour_exchange(const std::byte* lo, std::size_t lo_bytes, const std::byte* hi,
+                              std::size_t hi_bytes, std::vector<std::byte>& recv,
+                              std::size_t& recv_lo_bytes) const {
+  recv_lo_bytes = 0;
+  if (!mpi_ || size_ == 1) {
+    recv.clear();
+    return;
+  }
+#ifdef SWELL_HAVE_MPI
+  const int below = rank_ - 1, above = rank_ + 1;
+  const bool has_below = below >= 0, has_above = above < size_;
+  // Sizes first (as 64-bit counts), then the bytes; tags keep the two directions apart.
+  std::uint64_t out_lo = lo_bytes, out_hi = hi_bytes, in_lo = 0, in_hi = 0;
+  MPI_Request req[4];
+  int nreq = 0;
+  if (has_below) {
+    MPI_Irecv(&in_lo, 1, MPI_UINT64_T, below, 1, MPI_COMM_WORLD, &req[nreq++]);
+    MPI_Isend(&out_lo, 1, MPI_UINT64_T, below, 2, MPI_COMM_WORLD, &req[nreq++]);
+  }
+  if (has_above) {
+    MPI_Irecv(&in_hi, 1, MPI_UINT64_T, above, 2, MPI_COMM_WORLD, &req[nreq++]);
+    MPI_Isend(&out_hi, 1, MPI_UINT64_T, above, 1, MPI_COMM_WORLD, &req[nreq++]);
+  }
+  MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
+  if (in_lo + in_hi > static_cast<std::uint64_t>(INT32_MAX) || lo_bytes > INT32_MAX ||
+      hi_bytes > INT32_MAX)
+    throw std::runtime_error("Comm::neighbour_exchange: over 2 GiB in one message");
+  if (recv.size() < in_lo + in_hi) recv.resize(in_lo + in_hi);
+  nreq = 0;
+  if (has_below) {
+    MPI_Irecv(recv.data(), static_cast<int>(in_lo), MPI_BYTE, below, 3, MPI_COMM_WORLD,
+              &req[nreq++]);
+    MPI_Isend(lo, static_cast<int>(lo_bytes), MPI_BYTE, below, 4, MPI_COMM_WORLD, &req[nreq++]);
+  }
+  if (has_above) {
+    MPI_Irecv(recv.data() + in_lo, static_cast<int>(in_hi), MPI_BYTE, above, 4, MPI_COMM_WORLD,
+              &req[nreq++]);
+    MPI_Isend(hi, static_cast<int>(hi_bytes), MPI_BYTE, above, 3, MPI_COMM_WORLD, &req[nreq++]);
+  }
+  MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
+  recv_lo_bytes = in_lo;
+  recv.resize(in_lo + in_hi);
+#else
+  (void)lo;
+  (void)lo_bytes;
+  (void)hi;
+  (void)hi_bytes;
 #endif
 }
 

@@ -40,6 +40,15 @@ class Comm {
                  std::vector<std::byte>& recv, std::vector<int>& recv_count,
                  std::vector<int>& recv_displ) const;
 
+  // Neighbour exchange along a line of ranks (the slabs): sends [lo, lo + lo_bytes) to rank - 1
+  // and [hi, hi + hi_bytes) to rank + 1 (nothing where there is no such rank), and receives
+  // what rank - 1 and rank + 1 send this way, in that order, into recv (resized to hold both;
+  // recv_lo_bytes: the part from rank - 1). Sizes travel first. Point-to-point: its latency
+  // does not grow with the number of ranks, unlike alltoallv's.
+  void neighbour_exchange(const std::byte* lo, std::size_t lo_bytes, const std::byte* hi,
+                          std::size_t hi_bytes, std::vector<std::byte>& recv,
+                          std::size_t& recv_lo_bytes) const;
+
   void barrier() const;
 
  private:

@@ -152,6 +152,10 @@ double imbalance(const ParticleSet<D>& ps, const Comm& comm) {
 // of the particles that stay is kept; arrivals follow in sender-rank order, each sender's in
 // its own order, so the result is deterministic for a fixed rank count. Periodic images must
 // have been dropped. The buffers are the caller's and are reused (no allocation once grown).
+// `neighbours_first`: when no particle on any rank goes further than the next slab (one
+// allreduce tells), the records travel point to point to the two neighbours
+// (Comm::neighbour_exchange, latency independent of the rank count) instead of by an
+// all-to-all; the result is the same, arrivals in the same order.
 struct MigrationBuffers {
   std::vector<std::byte> send, recv;
   std::vector<int> send_count, recv_count, recv_displ;
@@ -162,7 +166,8 @@ struct MigrationBuffers {
 };
 
 template <int D>
-void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, MigrationBuffers& buf) {
+void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, MigrationBuffers& buf,
+             bool neighbours_first = false) {
   if (ps.n_ghost != 0) throw std::logic_error("migrate: drop the periodic images first");
   const int me = comm.rank(), n = comm.size();
   if (slabs.size() != n) throw std::invalid_argument("migrate: one slab per rank");
@@ -170,6 +175,7 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
   buf.dest.resize(na);
   buf.send_count.assign(static_cast<std::size_t>(n), 0);
   std::size_t leaving = 0;
+  bool far = false;
   for (std::size_t i = 0; i < na; ++i) {
     const double x = ps.pos[i][slabs.axis];
     // A non-finite position stays here: the sort excludes it.
@@ -178,8 +184,10 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
     if (o != me) {
       buf.send_count[static_cast<std::size_t>(o)] += static_cast<int>(rec);
       ++leaving;
+      far = far || o < me - 1 || o > me + 1;
     }
   }
+  const bool neighbours = neighbours_first && n > 1 && comm.max(far ? 1.0 : 0.0) == 0.0;
   // Pack in destination-rank order.
   if (buf.send.size() < leaving * rec) buf.send.resize(leaving * rec);
   {
@@ -197,7 +205,22 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
       c += rec;
     }
   }
-  comm.alltoallv(buf.send, buf.send_count, buf.recv, buf.recv_count, buf.recv_displ);
+  if (neighbours) {
+    // Rank order of the send buffer: the part for rank - 1, then the part for rank + 1.
+    const std::size_t lo = me > 0 ? static_cast<std::size_t>(buf.send_count[me - 1]) : 0,
+                      hi = me + 1 < n ? static_cast<std::size_t>(buf.send_count[me + 1]) : 0;
+    std::size_t from_lo = 0;
+    comm.neighbour_exchange(buf.send.data(), lo, buf.send.data() + lo, hi, buf.recv, from_lo);
+    buf.recv_count.assign(static_cast<std::size_t>(n), 0);
+    buf.recv_displ.assign(static_cast<std::size_t>(n), 0);
+    if (me > 0) buf.recv_count[me - 1] = static_cast<int>(from_lo);
+    if (me + 1 < n) {
+      buf.recv_count[me + 1] = static_cast<int>(buf.recv.size() - from_lo);
+      buf.recv_displ[me + 1] = static_cast<int>(from_lo);
+    }
+  } else {
+    comm.alltoallv(buf.send, buf.send_count, buf.recv, buf.recv_count, buf.recv_displ);
+  }
   std::size_t arriving = 0;
   for (int r = 0; r < n; ++r) {
     const auto bytes = static_cast<std::size_t>(buf.recv_count[static_cast<std::size_t>(r)]);

@@ -11,8 +11,10 @@
 //   the wall normal from its wall particle), and each slab is at least that wide, so a halo
 //   only ever comes from the next slab.
 // - refresh: position, velocity and density of the same particles again, into the same slots.
-// Every call is collective. The order of everything sent is fixed (rank order, then the local
-// order), so a run on a given number of ranks is deterministic.
+// Halo builds, refreshes and migration talk to the two neighbouring ranks only (migration
+// after a rebalance, or when a particle jumped further than one slab, uses an all-to-all). Every
+// call is collective. The order of everything sent is fixed (rank order, then the local order), so
+// a run on a given number of ranks is deterministic.
 #pragma once
 
 #include <chrono>
@@ -64,14 +66,18 @@ class SlabExchange final : public Exchange<D> {
 
   void migrate(ParticleSet<D>& ps, long step) override {
     const double t0 = wtime();
+    bool rebalanced = false;
     if (rebalance_every_ > 0 && step > 0 && step % rebalance_every_ == 0 &&
         step != last_rebalance_) {
+      rebalanced = true;
       slabs_ = balanced_slabs(ps, slabs_.axis, slabs_.lo.front(), slabs_.lo.back(), width_, comm_,
                               4096, 0, true);
       last_rebalance_ = step;
       ++stats_.rebalances;
     }
-    parallel::migrate(ps, slabs_, comm_, mig_);
+    // After a rebalance particles may go to any rank; otherwise only to a neighbour (a step
+    // moves a particle far less than a slab's width), checked by migrate itself.
+    parallel::migrate(ps, slabs_, comm_, mig_, !rebalanced);
     stats_.migrated += mig_.sent;
     stats_.seconds += wtime() - t0;
   }
@@ -151,29 +157,24 @@ class SlabExchange final : public Exchange<D> {
   static double wtime();
 
   // Sends send_lo_ to rank - 1 and send_hi_ to rank + 1, `rec` bytes per particle written by
-  // write(ps, i, out); what arrives is in recv_ (rank order).
+  // write(ps, i, out); what arrives is in recv_ (from rank - 1, then from rank + 1). Point to
+  // point with the two neighbours only (Comm::neighbour_exchange).
   template <class Write>
   void exchange_lists(const ParticleSet<D>& ps, std::size_t rec, Write&& write) {
-    const int me = comm_.rank(), n = comm_.size();
-    send_count_.assign(static_cast<std::size_t>(n), 0);
-    if (me > 0)
-      send_count_[static_cast<std::size_t>(me) - 1] = static_cast<int>(send_lo_.size() * rec);
-    if (me + 1 < n)
-      send_count_[static_cast<std::size_t>(me) + 1] = static_cast<int>(send_hi_.size() * rec);
-    const std::size_t bytes = (send_lo_.size() + send_hi_.size()) * rec;
-    if (send_.size() < bytes) send_.resize(bytes);
+    const std::size_t lo_bytes = send_lo_.size() * rec, hi_bytes = send_hi_.size() * rec;
+    if (send_.size() < lo_bytes + hi_bytes) send_.resize(lo_bytes + hi_bytes);
     std::byte* out = send_.data();
     for (const std::uint32_t i : send_lo_) write(ps, i, out), out += rec;
     for (const std::uint32_t i : send_hi_) write(ps, i, out), out += rec;
-    comm_.alltoallv(send_, send_count_, recv_, recv_count_, recv_displ_);
+    std::size_t recv_lo = 0;
+    comm_.neighbour_exchange(send_.data(), lo_bytes, send_.data() + lo_bytes, hi_bytes, recv_,
+                             recv_lo);
   }
   std::size_t total_received(std::size_t rec) const {
-    std::size_t bytes = 0;
-    for (const int c : recv_count_) bytes += static_cast<std::size_t>(c);
-    if (bytes % rec != 0)
+    if (recv_.size() % rec != 0)
       throw std::runtime_error(
           "SlabExchange: records of another size arrived (optional fields differ between ranks)");
-    return bytes / rec;
+    return recv_.size() / rec;
   }
 
   Comm comm_;
@@ -183,7 +184,6 @@ class SlabExchange final : public Exchange<D> {
   MigrationBuffers mig_;
   std::vector<std::uint32_t> send_lo_, send_hi_, slot_of_;
   std::vector<std::byte> send_, recv_;
-  std::vector<int> send_count_, recv_count_, recv_displ_;
   std::vector<Vec<D>> xs_;
   HaloStats stats_;
 };
