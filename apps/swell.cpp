@@ -289,6 +289,11 @@ int main(int argc, char** argv) {
   }
 
   try {
+    // Only `swell run` is decomposed; any other command on several ranks would run N times
+    // into the same files.
+    if (swell::parallel::Comm::world().size() > 1 && !*run)
+      throw std::invalid_argument(
+          "only `swell run` runs on several MPI ranks; start this command without mpirun");
     if (*run) {
       // Under mpirun every rank runs the case on its slab; a build without MPI cannot.
       if (const int ranks = swell::parallel::launcher_world_size();
