@@ -7,7 +7,8 @@
 #     uninterrupted 2-rank run; restarted on 1 and on 3 ranks: within the same bounds;
 #   - a second run into a folder that holds one is refused by rank 0 with exit 2, the others
 #     leave with it (no rank waits forever), and the folder keeps its files unchanged;
-#   - the watchdog (rank 0's check) stops a run on 2 ranks with exit 3.
+#   - the watchdog (rank 0's check) stops a run on 2 ranks with exit 3;
+#   - a command other than run on 2 ranks is refused with exit 2.
 # Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
 # Usage: run_ranks.sh SWELL MPIRUN CASE WORKDIR
 set -eu
@@ -39,4 +40,7 @@ grep -q "already holds a run" refused.log || { echo "FAIL: no message from rank 
 rc=0; run 2 -o wd --set time.end=0.06 --set watchdog.max_density=1.0001 > wd.log 2>&1 || rc=$?
 if [ "$rc" != 3 ]; then echo "FAIL: a watchdog stop on 2 ranks exited $rc, not 3"; cat wd.log; exit 1; fi
 grep -q "went unstable" wd.log || { echo "FAIL: no watchdog message"; cat wd.log; exit 1; }
+# Only `swell run` is decomposed: another command on 2 ranks is refused (exit 2).
+rc=0; "$mpirun" --oversubscribe -np 2 "$swell" waves 0.05 1.2 0.4 > waves.log 2>&1 || rc=$?
+[ "$rc" = 2 ] || { echo "FAIL: swell waves on 2 ranks exited $rc, not 2"; cat waves.log; exit 1; }
 exec python3 "$here/check_ranks.py" "$work"
