@@ -516,10 +516,6 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
                                   " runs on one rank only for now (issue #16): run this "
                                   "case without mpirun, or with -np 1");
     };
-    if (setup.params.shifting == ShiftingModel::Fickian)
-      refuse(
-          "particle shifting (physics.shifting; its free-surface normals of the halo images "
-          "are not exchanged)");
     for (const auto& m : setup.motions)
       if (m.spec().type == MotionSpec::Type::Wave && m.spec().absorption)
         refuse("active absorption (a paddle's water level is measured over all particles)");

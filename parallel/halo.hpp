@@ -140,6 +140,21 @@ class SlabExchange final : public Exchange<D> {
     stats_.seconds += wtime() - t0;
   }
 
+  void refresh_vectors(std::vector<Vec<D>>& field, std::size_t ghost_begin) override {
+    const double t0 = wtime();
+    constexpr std::size_t rec = sizeof(Vec<D>);
+    exchange_lists(field, rec, [](const std::vector<Vec<D>>& f, std::size_t i, std::byte* out) {
+      std::memcpy(out, f[i].data(), rec);
+    });
+    const std::size_t arriving = total_received(rec);
+    if (arriving != slot_of_.size() || field.size() < ghost_begin + arriving)
+      throw std::logic_error("SlabExchange::refresh_vectors: the halo changed since it was built");
+    for (std::size_t k = 0; k < arriving; ++k)
+      std::memcpy(field[ghost_begin + slot_of_[k]].data(), recv_.data() + k * rec, rec);
+    stats_.image_bytes += arriving * rec;
+    stats_.seconds += wtime() - t0;
+  }
+
   double global_min(double x) const override { return comm_.min(x); }
   std::uint64_t global_sum(std::uint64_t x) const override { return comm_.sum(x); }
   int rank() const override { return comm_.rank(); }
@@ -159,8 +174,8 @@ class SlabExchange final : public Exchange<D> {
   // Sends send_lo_ to rank - 1 and send_hi_ to rank + 1, `rec` bytes per particle written by
   // write(ps, i, out); what arrives is in recv_ (from rank - 1, then from rank + 1). Point to
   // point with the two neighbours only (Comm::neighbour_exchange).
-  template <class Write>
-  void exchange_lists(const ParticleSet<D>& ps, std::size_t rec, Write&& write) {
+  template <class Source, class Write>
+  void exchange_lists(const Source& ps, std::size_t rec, Write&& write) {
     const std::size_t lo_bytes = send_lo_.size() * rec, hi_bytes = send_hi_.size() * rec;
     if (send_.size() < lo_bytes + hi_bytes) send_.resize(lo_bytes + hi_bytes);
     std::byte* out = send_.data();

@@ -246,10 +246,17 @@ Vec<D> surface_normal(const ShiftingTerms<D>& t, bool& skipped) {
 //      through it either. Only particles in cells next to a surface particle's cell look.
 // A particle at rest has no shift (D = A h |v| dt = 0). Parallel; no allocation once the
 // buffers have their size.
-template <int D, class Kernel>
+// `remote_normals(normal, ghost_begin)`: on several ranks, fills the halo images' normals from
+// their owners (collective: every rank calls it); the default does nothing.
+struct NoRemoteImages {
+  template <class V>
+  void operator()(V&, std::size_t) const {}
+};
+template <int D, class Kernel, class RemoteNormals = NoRemoteImages>
 ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid,
                                const Kernel& kernel, const ShiftingParams& sp, double dp, double dt,
-                               ShiftingWork<D>& work) {
+                               ShiftingWork<D>& work,
+                               RemoteNormals&& remote_normals = NoRemoteImages{}) {
   const std::size_t np = ps.size();
   const long n = static_cast<long>(np);
   // Neighbours may be periodic images (stored after the particles): vol and normal cover them.
@@ -319,8 +326,9 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
             std::uint8_t{0});
   for (std::size_t a = 0; a < np; ++a)
     if (normal[a].squaredNorm() > 0.0) work.cell_flag[grid.cell_of(a)] = 1;
+  remote_normals(normal, gb);  // halo images of a decomposed run: their owners' normals
   for (std::size_t k = 0; k < ns - gb; ++k) {  // periodic images carry their source's normal
-    normal[gb + k] = normal[grid.ghost_source(k)];
+    if (grid.ghost_source(k) != CellGrid<D>::kRemote) normal[gb + k] = normal[grid.ghost_source(k)];
     if (normal[gb + k].squaredNorm() > 0.0) work.cell_flag[grid.ghost_cell(k)] = 1;
   }
   std::size_t shifted = 0;

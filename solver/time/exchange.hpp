@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "solver/neighbours/cell_grid.hpp"
 #include "solver/state/particle_set.hpp"
@@ -30,6 +31,10 @@ class Exchange {
   virtual void build_halo(ParticleSet<D>& ps, CellGrid<D>& grid) = 0;
   // The images' position, velocity and density from their owners' current values.
   virtual void refresh(ParticleSet<D>& ps) = 0;
+  // A per-particle vector computed by each rank for its own particles (e.g. shifting's
+  // free-surface normals): the images' entries, at [ghost_begin, ...) in image order, from
+  // their owners'.
+  virtual void refresh_vectors(std::vector<Vec<D>>& field, std::size_t ghost_begin) = 0;
   virtual double global_min(double x) const = 0;
   virtual std::uint64_t global_sum(std::uint64_t x) const = 0;
   virtual int rank() const = 0;

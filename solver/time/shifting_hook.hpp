@@ -22,6 +22,10 @@ class ShiftingHook final : public StepHook<D> {
   void after_integration(StepState<D>& s) override {
     ParticleSet<D>& ps = s.particles;
     stats_ = with_kernel<D>(s.params.kernel, s.params.h, [&](const auto& kernel) {
+      if (s.exchange)  // several ranks: the halo's surface normals come from their owners
+        return compute_shifting<D>(
+            ps, s.grid, kernel, p_, s.params.dp, s.dt, work_,
+            [&](std::vector<Vec<D>>& v, std::size_t gb) { s.exchange->refresh_vectors(v, gb); });
       return compute_shifting<D>(ps, s.grid, kernel, p_, s.params.dp, s.dt, work_);
     });
     const long n = static_cast<long>(ps.size());

@@ -89,7 +89,7 @@ class Simulation {
   void restore_hooks(const std::map<std::string, double>& in);
 
  private:
-  StepState<D> state(double t) { return {ps_, grid_, f_, prm_, eos_, t, dt_}; }
+  StepState<D> state(double t) { return {ps_, grid_, f_, prm_, eos_, t, dt_, exchange_.get()}; }
   void evaluate();  // sort + before_forces + forces + after_forces at the current positions
   double choose_dt() const;  // the global minimum on several ranks
   double local_dt() const;

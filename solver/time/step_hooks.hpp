@@ -16,6 +16,7 @@
 #include "solver/physics/wcsph_forces.hpp"
 #include "solver/solver_params.hpp"
 #include "solver/state/particle_set.hpp"
+#include "solver/time/exchange.hpp"
 
 namespace swell {
 
@@ -29,6 +30,9 @@ struct StepState {
   const TaitEos& eos;
   double time;  // the time the particles are at (the substep time in prescribe)
   double dt;    // the step being taken (0 before the first)
+  // The decomposition of a run on several ranks (null on one): for a hook that must exchange
+  // values it computes for the halo images.
+  Exchange<D>* exchange = nullptr;
 };
 
 template <int D>

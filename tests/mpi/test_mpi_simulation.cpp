@@ -147,12 +147,17 @@ TEST(MpiSimulation, DamBreakMatchesOneRankWithAFixedStep) {
   EXPECT_EQ(d.dt, 0.0);
 }
 
-TEST(MpiSimulation, MdbcDamBreakMatchesOneRankWithAFixedStep) {
+// The fixed-step dam break with one more edit, against one rank at rounding level.
+void expect_fixed_step_match(const std::string& edit, const char* what) {
   std::vector<std::string> sets = fixed_dt();
-  sets.push_back("physics.boundary.model=mdbc");
-  const Difference d = compare_to_one_rank(dam_break(sets), "mDBC, fixed dt", 25);
+  sets.push_back(edit);
+  const Difference d = compare_to_one_rank(dam_break(sets), what, 25);
   EXPECT_LT(d.dx, kFixedDx);
   EXPECT_LT(d.drho, kFixedRho);
+}
+
+TEST(MpiSimulation, MdbcDamBreakMatchesOneRankWithAFixedStep) {
+  expect_fixed_step_match("physics.boundary.model=mdbc", "mDBC, fixed dt");
 }
 
 TEST(MpiSimulation, DamBreakMatchesOneRankWithTheVariableStep) {
@@ -192,16 +197,12 @@ TEST(MpiSimulation, RunsAreDeterministicForAGivenRankCount) {
   EXPECT_EQ(a.time, b.time);
 }
 
-TEST(MpiSimulation, ShiftingIsRefusedOnSeveralRanks) {
-  const Comm comm = Comm::world();
-  if (comm.size() == 1) GTEST_SKIP() << "one rank: shifting runs";
-  const CaseSetup<2> setup = dam_break({"physics.shifting={model: fickian}"});
-  const double width = halo_width(setup);
-  const Slabs slabs =
-      even_slabs(0, setup.params.domain_min[0], setup.params.domain_max[0], comm.size());
-  EXPECT_THROW(make_simulation<2>(setup, share_by_slabs(setup.particles, slabs, comm.rank()),
-                                  std::make_unique<SlabExchange<2>>(comm, slabs, width, 0)),
-               std::invalid_argument);
+// Shifting on several ranks: the halo images' free-surface normals come from their owners
+// (Exchange::refresh_vectors); without them the particles under the surface near a slab face
+// would be shifted out through it.
+// (Checked: with the exchange of normals switched off the test fails, 5.5e-7 dp on 2 ranks.)
+TEST(MpiSimulation, ShiftingDamBreakMatchesOneRankWithAFixedStep) {
+  expect_fixed_step_match("physics.shifting={model: fickian}", "DBC + shifting, fixed dt");
 }
 
 }  // namespace
