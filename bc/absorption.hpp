@@ -48,6 +48,7 @@
 #include "solver/physics/kernels.hpp"
 #include "solver/solver_params.hpp"
 #include "solver/state/particle_set.hpp"
+#include "solver/time/exchange.hpp"
 
 namespace swell {
 
@@ -83,10 +84,11 @@ class PaddleAbsorber {
 
   // Once per step after the integration, at time t with step dt: measures the water level in
   // front of the paddle, whose target displacement (ramped) is x_target, and updates the state.
+  // `ex` (several ranks): the paddle's position and the water level are reduced over the ranks.
   template <int D>
-  void update(const ParticleSet<D>& ps, const SolverParams& p, double t, double dt,
-              double x_target) {
-    if (!placed_) locate(ps, p);
+  void update(const ParticleSet<D>& ps, const SolverParams& p, double t, double dt, double x_target,
+              const Exchange<D>* ex = nullptr) {
+    if (!placed_) locate(ps, p, ex);
     const double tau = t - spec_.start;
     if (tau <= 0.0 || t > spec_.stop) {  // not active: hold the correction still
       x_c_ = offset(t);
@@ -102,7 +104,11 @@ class PaddleAbsorber {
     base[up] = spec_.bed;
     const double depth = spec_.paddle->paddle.depth;
     const double level = with_kernel<D>(p.kernel, p.h, [&](const auto& kernel) {
-      return water_height(ps, kernel, base, up, spec_.bed + 2.0 * depth, 0.5 * p.dp, p.rho0);
+      if (!ex)
+        return water_height(ps, kernel, base, up, spec_.bed + 2.0 * depth, 0.5 * p.dp, p.rho0);
+      const auto sum = [ex](std::vector<double>& v) { ex->global_sum_in_place(v); };
+      return water_height(ps, kernel, base, up, spec_.bed + 2.0 * depth, 0.5 * p.dp, p.rho0, 0.5,
+                          &sum);
     });
     eta_measured_ = level - (spec_.bed + depth);
     // The motion law's smoothstep ramp (bc/motion.hpp) scales the target wave too.
@@ -154,7 +160,7 @@ class PaddleAbsorber {
   // The paddle's face at rest: the furthest of its particles along `direction` plus dp / 2; in
   // 3D the line is at the mean lateral position of the paddle's particles.
   template <int D>
-  void locate(const ParticleSet<D>& ps, const SolverParams& p) {
+  void locate(const ParticleSet<D>& ps, const SolverParams& p, const Exchange<D>* ex) {
     double far = -1e300;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     std::size_t n = 0;
@@ -165,6 +171,13 @@ class PaddleAbsorber {
       far = std::max(far, x.dot(spec_.direction));
       sum += x;
       ++n;
+    }
+    if (ex) {  // several ranks: the paddle's particles on every rank
+      far = ex->global_max(far);
+      std::vector<double> s4{sum.x(), sum.y(), sum.z(), static_cast<double>(n)};
+      ex->global_sum_in_place(s4);
+      sum = Eigen::Vector3d(s4[0], s4[1], s4[2]);
+      n = static_cast<std::size_t>(s4[3]);
     }
     if (n == 0) far = 0.0;
     face_ = far + 0.5 * p.dp;

@@ -50,7 +50,7 @@ class MovingBodies final : public StepHook<D> {
       if (!absorbers_[b]) continue;
       const RigidPose law = laws_[b].pose(s.time);
       absorbers_[b]->update(s.particles, s.params, s.time, s.dt,
-                            law.d.dot(laws_[b].spec().direction));
+                            law.d.dot(laws_[b].spec().direction), s.exchange);
     }
   }
 

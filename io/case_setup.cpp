@@ -509,17 +509,6 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
 template <int D>
 Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particles,
                               std::unique_ptr<Exchange<D>> exchange) {
-  if (exchange && exchange->ranks() > 1) {
-    // What a decomposed run cannot do yet: each needs data of particles beyond the halo.
-    auto refuse = [&](const std::string& what) {
-      throw std::invalid_argument(what +
-                                  " runs on one rank only for now (issue #16): run this "
-                                  "case without mpirun, or with -np 1");
-    };
-    for (const auto& m : setup.motions)
-      if (m.spec().type == MotionSpec::Type::Wave && m.spec().absorption)
-        refuse("active absorption (a paddle's water level is measured over all particles)");
-  }
   typename Simulation<D>::Hooks hooks;
   if (MovingBodies<D>::any_moves(setup.motions))
     hooks.push_back(std::make_unique<MovingBodies<D>>(setup.motions));

@@ -69,7 +69,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec);
 // moving bodies (prescribe), shifting, damping zones, settling (all three after_integration).
 // `particles` are the setup's (fresh start) or a checkpoint's (restart).
 // `exchange`: a run on several ranks (parallel/halo.hpp), `particles` being this rank's
-// share; refused for what a decomposed run cannot do yet (active absorption).
+// share (the Simulation refuses periodic axes with one).
 template <int D>
 Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particles,
                               std::unique_ptr<Exchange<D>> exchange = nullptr);

@@ -86,11 +86,28 @@ std::uint64_t Comm::sum(std::uint64_t x) const {
   return x;
 }
 
+#ifdef SWELL_HAVE_MPI
+namespace {
+// Element-wise sum over the ranks, in place.
+template <class T>
+void sum_vector(std::vector<T>& v, MPI_Datatype type) {
+  if (!v.empty())
+    MPI_Allreduce(MPI_IN_PLACE, v.data(), static_cast<int>(v.size()), type, MPI_SUM,
+                  MPI_COMM_WORLD);
+}
+}  // namespace
+#endif
+
 void Comm::sum_in_place(std::vector<std::uint64_t>& v) const {
 #ifdef SWELL_HAVE_MPI
-  if (mpi_ && !v.empty())
-    MPI_Allreduce(MPI_IN_PLACE, v.data(), static_cast<int>(v.size()), MPI_UINT64_T, MPI_SUM,
-                  MPI_COMM_WORLD);
+  if (mpi_) sum_vector(v, MPI_UINT64_T);
+#endif
+  (void)v;
+}
+
+void Comm::sum_in_place(std::vector<double>& v) const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_) sum_vector(v, MPI_DOUBLE);
 #endif
   (void)v;
 }

@@ -30,6 +30,7 @@ class Comm {
   std::uint64_t sum(std::uint64_t x) const;
   // Element-wise sum over ranks of a vector of counts (same length everywhere).
   void sum_in_place(std::vector<std::uint64_t>& v) const;
+  void sum_in_place(std::vector<double>& v) const;
   // Every rank's value, in rank order.
   std::vector<std::uint64_t> gather_all(std::uint64_t x) const;
 

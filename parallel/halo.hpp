@@ -157,6 +157,8 @@ class SlabExchange final : public Exchange<D> {
 
   double global_min(double x) const override { return comm_.min(x); }
   std::uint64_t global_sum(std::uint64_t x) const override { return comm_.sum(x); }
+  double global_max(double x) const override { return comm_.max(x); }
+  void global_sum_in_place(std::vector<double>& v) const override { comm_.sum_in_place(v); }
   int rank() const override { return comm_.rank(); }
   int ranks() const override { return comm_.size(); }
 

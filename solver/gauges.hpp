@@ -203,9 +203,16 @@ Vec<D> probe_velocity(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x
 // a sample reaches the threshold. Returns z0 if no sample within one support above z0 is wet
 // (a dry bed, or a layer thinner than about one support), and z_top if the fluid reaches it.
 // Only particles whose horizontal distance to the line is below the support are summed.
-template <int D, class K>
+// `sum_profile` (several ranks): each rank passes its own particles and a function that sums a
+// vector over the ranks; the densities of every sample of the line are then summed before the
+// walk (one reduction). Without it the walk evaluates the samples as it goes.
+struct NoProfileSum {
+  void operator()(std::vector<double>&) const {}
+};
+template <int D, class K, class ProfileSum = NoProfileSum>
 double water_height(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_base, int up,
-                    double z_top, double dz, double rho0, double fraction = 0.5) {
+                    double z_top, double dz, double rho0, double fraction = 0.5,
+                    const ProfileSum* sum_profile = nullptr) {
   gauge_detail::check_line(x_base, up, z_top, dz);
   const double support = kernel.support();
   const double threshold = fraction * rho0;
@@ -213,17 +220,27 @@ double water_height(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x_b
   // Fluid particles within one support of the line, horizontally.
   const std::vector<std::uint32_t>& near = gauge_detail::line_candidates(
       ps, x_base, up, support, [&](std::size_t j) { return ps.role[j] == Role::Fluid; });
+  auto sample_z = [&](long k) { return std::min(z0 + static_cast<double>(k) * dz, z_top); };
   auto density_at = [&](double z) {
     Vec<D> x = x_base;
     x[up] = z;
     return gauge_detail::mass_sum(ps, kernel, near, x);
   };
+  thread_local std::vector<double> profile;
+  if (sum_profile) {
+    profile.clear();
+    for (long k = 0;; ++k) {
+      profile.push_back(density_at(sample_z(k)));
+      if (sample_z(k) >= z_top) break;
+    }
+    (*sum_profile)(profile);
+  }
 
   bool wet = false;
   double z_prev = z0, rho_prev = 0.0;
   for (long k = 0;; ++k) {
-    const double z = std::min(z0 + static_cast<double>(k) * dz, z_top);
-    const double rho = density_at(z);
+    const double z = sample_z(k);
+    const double rho = sum_profile ? profile[static_cast<std::size_t>(k)] : density_at(z);
     if (rho >= threshold) {
       wet = true;
     } else if (wet) {

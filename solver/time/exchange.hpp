@@ -37,6 +37,9 @@ class Exchange {
   virtual void refresh_vectors(std::vector<Vec<D>>& field, std::size_t ghost_begin) = 0;
   virtual double global_min(double x) const = 0;
   virtual std::uint64_t global_sum(std::uint64_t x) const = 0;
+  virtual double global_max(double x) const = 0;
+  // Element-wise sum over the ranks (same length everywhere).
+  virtual void global_sum_in_place(std::vector<double>& v) const = 0;
   virtual int rank() const = 0;
   virtual int ranks() const = 0;
   // Checkpoint state (the slab bounds), as named numbers.

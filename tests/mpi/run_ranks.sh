@@ -10,9 +10,11 @@
 #   - the watchdog (rank 0's check) stops a run on 2 ranks with exit 3;
 #   - a command other than run on 2 ranks is refused with exit 2.
 # Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
-# Usage: run_ranks.sh SWELL MPIRUN CASE WORKDIR
+#   - the regular-wave flume with an absorbing piston (FLUME, 0.1 s, fixed dt) on 1 and 2
+#     ranks: the paddle's water level is reduced over the ranks; the runs agree as above.
+# Usage: run_ranks.sh SWELL MPIRUN CASE WORKDIR FLUME
 set -eu
-swell=$1 mpirun=$2 case=$3 work=$4
+swell=$1 mpirun=$2 case=$3 work=$4 flume=$5
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
 # A sensor face too: it averages over each interval, so rank 0 gathers after every step.
@@ -43,4 +45,7 @@ grep -q "went unstable" wd.log || { echo "FAIL: no watchdog message"; cat wd.log
 # Only `swell run` is decomposed: another command on 2 ranks is refused (exit 2).
 rc=0; "$mpirun" --oversubscribe -np 2 "$swell" waves 0.05 1.2 0.4 > waves.log 2>&1 || rc=$?
 [ "$rc" = 2 ] || { echo "FAIL: swell waves on 2 ranks exited $rc, not 2"; cat waves.log; exit 1; }
+fl="--set bodies.1.motion.absorption=true --set time.end=0.1 --set time.dt_fixed=2e-4"
+"$swell" run "$flume" -q -t 1 -o a1 $fl > a1.log
+"$mpirun" --oversubscribe -np 2 "$swell" run "$flume" -q -t 1 -o a2 $fl > a2.log
 exec python3 "$here/check_ranks.py" "$work"
