@@ -189,6 +189,10 @@ class RunProtocol {
     pending_ = false;
     comm_.max(static_cast<double>(code));
   }
+  // A worker that failed where rank 0 may still be in its own work: meets it at the agreement.
+  void post(int code) {
+    if (comm_.size() > 1) comm_.max(static_cast<double>(code));
+  }
 
  private:
   parallel::Comm comm_;
@@ -224,7 +228,7 @@ Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
                                const std::map<std::string, double>* saved,
                                const parallel::Comm& comm, long rebalance_every) {
   if (comm.size() == 1) return make_simulation<D>(setup, std::move(all));
-  const double width = halo_width(setup);
+  const double width = halo_width(setup.params, all);  // `all`: setup.particles may be moved
   const SolverParams& pr = setup.params;
   const int n = comm.size();
   auto get = [&](const std::string& key) {
@@ -300,7 +304,14 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const std::string out_dir = opt.out_dir.empty() ? "out/" + spec.name : opt.out_dir;
   RunProtocol proto(comm);
-  CaseSetup<D> setup = setup_case<D>(spec);
+  std::optional<CaseSetup<D>> made;
+  try {
+    made.emplace(setup_case<D>(spec));
+  } catch (const std::exception&) {
+    proto.post(2);  // meet rank 0 at the first agreement, then leave with this error
+    throw;
+  }
+  CaseSetup<D>& setup = *made;
   proto.agree();  // rank 0: folder, logs, checkpoint checks
   std::optional<Simulation<D>> sim;
   if (opt.restart) {
@@ -367,9 +378,9 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
   prov.ranks = comm.size();
 
   const auto wall0 = std::chrono::steady_clock::now();
-  proto.symmetric();  // every rank sets the case up and fails alike
+  // A failure here (rank 0's own checks above, or the set-up) is posted at the first
+  // agreement, which the other ranks reach whether their set-up worked or not.
   CaseSetup<D> setup = setup_case<D>(spec);
-  proto.root_work();
   RunSummary sum;
   for (const auto& b : setup.bodies) (b.fluid ? sum.fluid : sum.boundary) += b.particles;
   const std::size_t n_total = sum.fluid + sum.boundary;
@@ -750,19 +761,21 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
       m << "No checkpoint was written (the run failed before the first one)";
     throw InstabilityError(m.str());
   }
+  const auto wall1 = std::chrono::steady_clock::now();
+  const double loop_s = std::chrono::duration<double>(wall1 - loop0).count();
+  // Collective (the other ranks wait in it): before anything of rank 0's own that may throw.
+  const std::string decomposition = decomposition_report(*sim, comm, loop_s, sim->steps() - step0);
+  proto.symmetric();  // the other ranks are done
   if (opt.progress && tty) std::fprintf(stderr, "\n");
   diag.flush();
   gauges.flush();
 
-  const auto wall1 = std::chrono::steady_clock::now();
-  const double loop_s = std::chrono::duration<double>(wall1 - loop0).count();
   sum.wall_seconds = std::chrono::duration<double>(wall1 - wall0).count();
   sum.steps = sim->steps();
   sum.sim_time = sim->time();
   const long loop_steps = sim->steps() - step0;
   sum.particle_steps_per_second =
       static_cast<double>(n_total) * loop_steps / std::max(loop_s, 1e-9);
-  proto.symmetric();  // the other ranks are done
   sum.excluded = view.excluded();
   sum.faces = view.excluded_faces();
   sum.excluded_fluid_fraction = watchdog.excluded_fraction();
@@ -802,7 +815,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
         << "), t = " << fx.first_time[u] << " - " << fx.last_time[u] << " s\n";
     }
   }
-  s << decomposition_report(*sim, comm, loop_s, loop_steps);
+  s << decomposition;
   s << "  output:         " << out_dir << " (" << sum.snapshots << " snapshots, " << pvd.path()
     << ")\n";
   log << s.str();

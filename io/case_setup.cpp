@@ -541,13 +541,13 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
 }
 
 template <int D>
-double halo_width(const CaseSetup<D>& setup) {
-  double w = kernel_support_factor(setup.params.kernel) * setup.params.h;
-  if (setup.params.boundary == BoundaryType::Mdbc) {
+double halo_width(const SolverParams& params, const ParticleSet<D>& particles) {
+  double w = kernel_support_factor(params.kernel) * params.h;
+  if (params.boundary == BoundaryType::Mdbc) {
     // A wall particle's ghost node lies at x + 2 n: its interpolation reaches one support
     // beyond that.
     double nmax = 0.0;
-    for (const auto& n : setup.particles.normal) nmax = std::max(nmax, n.norm());
+    for (const auto& n : particles.normal) nmax = std::max(nmax, n.norm());
     w += 2.0 * nmax;
   }
   return w;
@@ -557,8 +557,8 @@ template Simulation<2> make_simulation<2>(const CaseSetup<2>&, ParticleSet<2>,
                                           std::unique_ptr<Exchange<2>>);
 template Simulation<3> make_simulation<3>(const CaseSetup<3>&, ParticleSet<3>,
                                           std::unique_ptr<Exchange<3>>);
-template double halo_width<2>(const CaseSetup<2>&);
-template double halo_width<3>(const CaseSetup<3>&);
+template double halo_width<2>(const SolverParams&, const ParticleSet<2>&);
+template double halo_width<3>(const SolverParams&, const ParticleSet<3>&);
 template CaseSetup<2> setup_case<2>(const CaseSpec&);
 template CaseSetup<3> setup_case<3>(const CaseSpec&);
 

@@ -75,8 +75,8 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
                               std::unique_ptr<Exchange<D>> exchange = nullptr);
 
 // The halo width of a decomposed run: the kernel support, plus the reach of the mDBC ghost
-// nodes (twice the longest wall normal of setup.particles).
+// nodes (twice the longest wall normal of `particles`, the set-up's or a checkpoint's).
 template <int D>
-double halo_width(const CaseSetup<D>& setup);
+double halo_width(const SolverParams& params, const ParticleSet<D>& particles);
 
 }  // namespace swell

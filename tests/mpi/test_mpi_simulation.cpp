@@ -45,7 +45,7 @@ struct Decomposed {
 Decomposed run_decomposed(const CaseSetup<2>& setup, int steps, long rebalance,
                           double width_factor = 1.0) {
   const Comm comm = Comm::world();
-  const double width = halo_width(setup) * width_factor;
+  const double width = halo_width(setup.params, setup.particles) * width_factor;
   const Slabs slabs =
       balanced_slabs(setup.particles, 0, setup.params.domain_min[0], setup.params.domain_max[0],
                      width, Comm::self(), 4096, comm.size(), true);
