@@ -72,6 +72,7 @@ compare("r1", "r2", exact=False)
 compare("r2", "re2", exact=True)
 compare("r2", "re1", exact=False)
 compare("r2", "re3", exact=False)
+compare("m1", "m2", exact=False)  # mDBC
 compare("a1", "a2", exact=False)  # absorbing piston on 2 ranks against 1
 if failed:
     print("FAIL:\n  " + "\n  ".join(failed))

@@ -10,6 +10,7 @@
 #   - the watchdog (rank 0's check) stops a run on 2 ranks with exit 3;
 #   - a command other than run on 2 ranks is refused with exit 2.
 # Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
+#   - mDBC on 1 and 2 ranks (to 0.02 s);
 #   - the regular-wave flume with an absorbing piston (FLUME, 0.1 s, fixed dt) on 1 and 2
 #     ranks: the paddle's water level is reduced over the ranks; the runs agree as above.
 # Usage: run_ranks.sh SWELL MPIRUN CASE WORKDIR FLUME
@@ -45,6 +46,9 @@ grep -q "went unstable" wd.log || { echo "FAIL: no watchdog message"; cat wd.log
 # Only `swell run` is decomposed: another command on 2 ranks is refused (exit 2).
 rc=0; "$mpirun" --oversubscribe -np 2 "$swell" waves 0.05 1.2 0.4 > waves.log 2>&1 || rc=$?
 [ "$rc" = 2 ] || { echo "FAIL: swell waves on 2 ranks exited $rc, not 2"; cat waves.log; exit 1; }
+# mDBC through `swell run` (its halo is wider: the ghost nodes' reach) on 2 ranks against 1.
+run 1 -o m1 --set time.end=0.02 --set physics.boundary.model=mdbc > m1.log
+run 2 -o m2 --set time.end=0.02 --set physics.boundary.model=mdbc > m2.log
 fl="--set bodies.1.motion.absorption=true --set time.end=0.1 --set time.dt_fixed=2e-4"
 "$swell" run "$flume" -q -t 1 -o a1 $fl > a1.log
 "$mpirun" --oversubscribe -np 2 "$swell" run "$flume" -q -t 1 -o a2 $fl > a2.log
