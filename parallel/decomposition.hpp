@@ -370,7 +370,9 @@ GatherLayout gather_to_root(const ParticleSet<D>& ps, const Comm& comm, Particle
     std::uint64_t count = 0;
     for (std::size_t k = 0; k < n; ++k) count += round == 0 ? layout.active[k] : layout.excluded[k];
     if (round == 0) {
-      out = empty_like(ps);
+      // Rebuilt only when empty: later gathers reuse the arrays (no allocation once grown).
+      if (out.pos.empty()) out = empty_like(ps);
+      out.n_ghost = 0;
       out.for_each_field([&](const FieldInfo& f, auto& a) {
         if (out.enabled(f)) a.resize(count);
       });
