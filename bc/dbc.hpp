@@ -85,7 +85,10 @@ void initialise_hydrostatic(ParticleSet<D>& ps, const SolverParams& prm) {
       hi = hi.cwiseMax(ps.pos[i]);
     }
     CellGrid<D> grid(lo.array() - support, hi.array() + support, support);
-    grid.sort(ps);
+    // In place: a set-up sort needs no reorder scratch (the set-up's memory peak).
+    typename CellGrid<D>::Reorder in_place;
+    in_place.in_place = true;
+    grid.sort(ps, in_place);
     for (std::size_t i = 0; i < ps.size(); ++i) {
       double top = -std::numeric_limits<double>::infinity();
       if (ps.role[i] == Role::Fluid) {

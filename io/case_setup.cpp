@@ -219,6 +219,8 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     }
     s.particles.enable("normal", normals);
   }
+  // The lattice points are in the particles now: free them before the set-up's later stages.
+  std::vector<geometry::FilledBody>().swap(filled);
 
   // Moving bodies' particles become moving walls, placed at their pose at t = 0.
   MovingBodies<D>::prepare(s.particles, s.motions);

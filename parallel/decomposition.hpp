@@ -167,7 +167,7 @@ struct MigrationBuffers {
 
 template <int D>
 void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, MigrationBuffers& buf,
-             bool neighbours_first = false) {
+             bool neighbours_first = false, const LentScratch<D>& lent = {}) {
   if (ps.n_ghost != 0) throw std::logic_error("migrate: drop the periodic images first");
   const int me = comm.rank(), n = comm.size();
   if (slabs.size() != n) throw std::invalid_argument("migrate: one slab per rank");
@@ -238,7 +238,7 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
   if (leaving > 0 || arriving > 0) {
     // Keep the staying and excluded particles (permute to the front), then grow by the
     // arrivals and move the excluded block behind them.
-    ps.permute(buf.order);  // size() is now total - leaving entries in that order
+    ps.permute(buf.order, lent);  // size() is now total - leaving entries in that order
     const std::size_t excluded = total - na, kept = stay + excluded;
     ps.for_each_field([&](const FieldInfo& f, auto& a) {
       if (!ps.enabled(f)) return;

@@ -64,7 +64,7 @@ class SlabExchange final : public Exchange<D> {
   // Images of the last halo build on this rank.
   std::size_t images() const { return slot_of_.size(); }
 
-  void migrate(ParticleSet<D>& ps, long step) override {
+  void migrate(ParticleSet<D>& ps, long step, const LentScratch<D>& lent = {}) override {
     const double t0 = wtime();
     bool rebalanced = false;
     if (rebalance_every_ > 0 && step > 0 && step % rebalance_every_ == 0 &&
@@ -77,7 +77,7 @@ class SlabExchange final : public Exchange<D> {
     }
     // After a rebalance particles may go to any rank; otherwise only to a neighbour (a step
     // moves a particle far less than a slab's width), checked by migrate itself.
-    parallel::migrate(ps, slabs_, comm_, mig_, !rebalanced);
+    parallel::migrate(ps, slabs_, comm_, mig_, !rebalanced, lent);
     stats_.migrated += mig_.sent;
     stats_.seconds += wtime() - t0;
   }

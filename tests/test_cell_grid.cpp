@@ -322,5 +322,78 @@ TEST(CellGrid, RejectsEmptyDomain) {
                std::invalid_argument);
 }
 
+// The three ways sort() rearranges the arrays (the set's own scratch, scratch lent by the
+// caller, in place along the permutation's cycles) give the same set, field for field, with
+// optional fields enabled and particles leaving; lent arrays come back sized to the set, and
+// in place the `follow` arrays move with their particles.
+TYPED_TEST(CellGridTest, ReorderModesAgree) {
+  constexpr int D = TypeParam::value;
+  const Box<D> box;
+  std::mt19937_64 rng(7 + D);
+  ParticleSet<D> own;
+  add_inside(own, box, rng, 5000);  // above ParticleSet::kParallelMin: the parallel gather
+  add_particle(own, box.hi + filled<D>(1.0));
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (std::size_t i = 0; i < own.total(); ++i) {
+    for (int d = 0; d < D; ++d) own.vel[i][d] = u(rng), own.vel_prev[i][d] = u(rng);
+    own.rho[i] = 1000.0 + u(rng), own.rho_prev[i] = 1000.0 + u(rng), own.mass[i] = 1.0 + u(rng);
+    own.body[i] = static_cast<std::uint16_t>(i % 7);
+    own.role[i] = i % 3 ? Role::Fluid : Role::FixedWall;
+  }
+  own.enable("pos_ref", own.vel);
+  own.enable("normal", own.vel_prev);
+  ParticleSet<D> lent_set = own, in_place_set = own;
+  // Follow arrays: a value that identifies its particle (the id, and minus the id).
+  std::vector<Vec<D>> follow_v(own.total());
+  std::vector<double> follow_d(own.total());
+  for (std::size_t i = 0; i < own.total(); ++i) {
+    follow_v[i] = filled<D>(static_cast<double>(own.id[i]));
+    follow_d[i] = -static_cast<double>(own.id[i]);
+  }
+
+  CellGrid<D> g1(box.lo, box.hi, box.cell), g2 = g1, g3 = g1;
+  std::vector<Vec<D>> sv(3, Vec<D>::Zero());  // too small: permute sizes them
+  std::vector<double> sd1, sd2(10 * own.total(), 0.0);
+  typename CellGrid<D>::Reorder lent;
+  lent.lent.vec = &sv;
+  lent.lent.dbl = {&sd1, &sd2};
+  typename CellGrid<D>::Reorder cycles;
+  cycles.in_place = true;
+  cycles.follow_vec = &follow_v;
+  cycles.follow_dbl = &follow_d;
+  for (int round = 0; round < 3; ++round) {
+    const auto r1 = g1.sort(own);
+    const auto r2 = g2.sort(lent_set, lent);
+    const auto r3 = g3.sort(in_place_set, cycles);
+    EXPECT_EQ(r1.out_of_domain, r2.out_of_domain);
+    EXPECT_EQ(r1.out_of_domain, r3.out_of_domain);
+    ASSERT_EQ(own.size(), lent_set.size());
+    ASSERT_EQ(own.size(), in_place_set.size());
+    own.for_each_field([&](const FieldInfo& f, const auto& a) {
+      lent_set.for_each_field([&](const FieldInfo& f2, const auto& b) {
+        if constexpr (std::is_same_v<decltype(a), decltype(b)>)
+          if (f.index == f2.index) EXPECT_TRUE(a == b) << "lent scratch, field " << f.name;
+      });
+      in_place_set.for_each_field([&](const FieldInfo& f2, const auto& b) {
+        if constexpr (std::is_same_v<decltype(a), decltype(b)>)
+          if (f.index == f2.index) EXPECT_TRUE(a == b) << "in place, field " << f.name;
+      });
+    });
+    EXPECT_EQ(sv.size(), own.total());
+    EXPECT_EQ(sd1.size(), own.total());
+    EXPECT_EQ(sd2.size(), own.total());
+    for (std::size_t i = 0; i < in_place_set.size(); ++i) {
+      ASSERT_EQ(follow_v[i], filled<D>(static_cast<double>(in_place_set.id[i]))) << i;
+      ASSERT_EQ(follow_d[i], -static_cast<double>(in_place_set.id[i])) << i;
+    }
+    // Move everything by up to a cell for the next round (some particles leave).
+    for (ParticleSet<D>* ps : {&own, &lent_set, &in_place_set}) {
+      std::mt19937_64 same(100 + static_cast<unsigned>(round));
+      for (std::size_t i = 0; i < ps->size(); ++i)
+        for (int d = 0; d < D; ++d) ps->pos[i][d] += u(same) * 0.7 * box.cell;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace swell

@@ -107,9 +107,20 @@ class CellGrid {
     return static_cast<std::uint32_t>(c);
   }
 
+  // How sort() rearranges the particle arrays: with the set's own scratch (default), with
+  // arrays the caller lends as scratch (ParticleSet::permute), or in place without scratch
+  // (ParticleSet::permute_in_place; the `follow` arrays, indexed like the particles, are
+  // rearranged alike).
+  struct Reorder {
+    LentScratch<D> lent;
+    bool in_place = false;
+    std::vector<Vec<D>>* follow_vec = nullptr;
+    std::vector<double>* follow_dbl = nullptr;
+  };
+
   // Reorders the active particles by cell and excludes the ones that left the domain or hold
   // non-finite values. Allocation-free once the buffers reached their size.
-  SortResult sort(ParticleSet<D>& ps) {
+  SortResult sort(ParticleSet<D>& ps, const Reorder& how = {}) {
     drop_ghosts(ps);
     if (any_periodic_) wrap(ps);
     const std::size_t n = ps.size();
@@ -144,7 +155,15 @@ class CellGrid {
     cursor_.assign(start_.begin(), start_.end());
     for (std::size_t i = 0; i < n; ++i)
       order_[cursor_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
-    ps.permute(order_);
+    if (how.in_place) {
+      ps.permute_in_place(order_, how.follow_vec, how.follow_dbl);
+    } else {
+      // The cell ids are rebuilt below from the counting sort: until then they are the
+      // reorder's uint32 scratch.
+      LentScratch<D> lent = how.lent;
+      lent.u32 = &cell_of_;
+      ps.permute(order_, lent);
+    }
     ps.n_active = start_[num_cells_];
     // Cell ids in the new order (from the counting sort, no second cell computation) and the
     // cells holding fluid: wall cells with no fluid around them can skip the pair loop.

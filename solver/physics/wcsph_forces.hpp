@@ -26,17 +26,27 @@ template <int D>
 struct ForceBuffers {
   std::vector<Vec<D>> ace;
   std::vector<double> drho;
-  std::vector<double> prs;    // P_a / rho_a^2
-  std::vector<double> cs;     // sound speed c_a, only where the pair loop reads it
-  std::vector<double> press;  // P_a, filled only on request (Simulation::pressure(), output)
-  double visc_dt_max = 0.0;   // max over pairs of h |v_ab.r_ab| / (r^2 + eta^2), for dt
+  std::vector<double> prs;   // P_a / rho_a^2 (between steps: P_a, on request, Simulation::pressure)
+  std::vector<double> cs;    // sound speed c_a, only where the pair loop reads it
+  double visc_dt_max = 0.0;  // max over pairs of h |v_ab.r_ab| / (r^2 + eta^2), for dt
   double cs_max = 0.0;
   NeighbourLists neighbours;
 
+  // At least n entries in each of the rates' buffers. Capacity grows with 1/8 headroom, since
+  // the number of periodic or halo images changes from one evaluation to the next; the sizes
+  // differ between the buffers after a reorder lent them as scratch (ParticleSet::permute).
   void resize(std::size_t n) {
-    ace.resize(n);
-    drho.resize(n);
-    prs.resize(n);
+    grow(ace, n);
+    grow(drho, n);
+    grow(prs, n);
+  }
+
+ private:
+  template <class T>
+  static void grow(std::vector<T>& a, std::size_t n) {
+    if (a.size() >= n) return;
+    if (a.capacity() < n) a.reserve(n + n / 8);
+    a.resize(n);
   }
 };
 

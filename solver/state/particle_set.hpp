@@ -58,6 +58,18 @@ struct FieldInfo {
   /* mDBC on a moving body: normal in the body frame */                                    \
   X(normal_ref, V, FieldClass::Constant, nullptr, true)
 
+// Arrays that are dead while the particles are reordered and may serve as the reorder's
+// scratch: the vector one for the position-like fields, the double ones for the scalar fields
+// (the Simulation's force buffers at the start of an evaluation), the uint32 one for the ids
+// (the cell grid's cell ids, recomputed after the reorder). Lending them saves the set's own
+// scratch (in 3D 68 of its ~78 bytes per particle).
+template <int D>
+struct LentScratch {
+  std::vector<Vec<D>>* vec = nullptr;
+  std::array<std::vector<double>*, 2> dbl{};
+  std::vector<std::uint32_t>* u32 = nullptr;
+};
+
 template <int D>
 struct ParticleSet {
   using V = Vec<D>;
@@ -171,15 +183,18 @@ struct ParticleSet {
 
   // new[i] = old[order[i]] for every enabled field (order covers the active range; the
   // excluded tail keeps its place). Fields are gathered in passes: a pass takes, for each element
-  // type, up to kSlots fields into that type's scratch arrays without barriers between them
-  // (one parallel region), then swaps them in; the arrays left behind are the next pass's
-  // scratch. With today's table that is two passes, as many as the hand-written version had.
-  void permute(const std::vector<std::uint32_t>& order) {
+  // type, one field per scratch array of that type without barriers between them (one parallel
+  // region), then swaps them in; the arrays left behind are the next pass's scratch. The
+  // scratch arrays are the set's own (two per type) unless `lent` offers arrays that are dead
+  // during this reorder: then those are used instead (they come back holding old field
+  // contents, resized to total()) and the set's own are never allocated for that type.
+  void permute(const std::vector<std::uint32_t>& order, const LentScratch<D>& lent = {}) {
     const long n = static_cast<long>(order.size());
     const std::size_t total_n = pos.size();
     for (int pass = 0;; ++pass) {
       bool any = false, later = false;
-      visit_pass(pass, [&](auto& a, auto& scratch, int p) {
+      visit_pass(pass, lent, [&](auto& a, auto& scratch, int p) {
+        (void)a;
         if (p == pass) {
           scratch.resize(total_n);
           any = true;
@@ -188,18 +203,39 @@ struct ParticleSet {
       });
       if (!any) break;
 #pragma omp parallel if (n > kParallelMin)
-      visit_pass(pass, [&](auto& a, auto& scratch, int p) {
+      visit_pass(pass, lent, [&](auto& a, auto& scratch, int p) {
         if (p != pass) return;
 #pragma omp for schedule(static) nowait
         for (long i = 0; i < n; ++i) scratch[i] = a[order[i]];
       });
-      visit_pass(pass, [&](auto& a, auto& scratch, int p) {
+      visit_pass(pass, lent, [&](auto& a, auto& scratch, int p) {
         if (p != pass) return;
         for (std::size_t i = order.size(); i < total_n; ++i) scratch[i] = a[i];
         a.swap(scratch);
       });
       if (!later) break;
     }
+  }
+
+  // Frees the set's own scratch arrays (e.g. those a set-up sort allocated, before a Simulation
+  // that lends its own takes the set over).
+  void release_scratch() {
+    scratch_ = Scratch{};
+    seen_ = {};
+  }
+
+  // The same reorder without any scratch array: each field is rearranged along the cycles of
+  // `order` (serial, one bit per particle of bookkeeping). For the rare reorder between steps
+  // (density exclusions), when the force buffers hold values that must stay readable: those
+  // arrays are passed as `follow` and rearranged alike.
+  void permute_in_place(const std::vector<std::uint32_t>& order,
+                        std::vector<Vec<D>>* follow_vec = nullptr,
+                        std::vector<double>* follow_dbl = nullptr) {
+    for_each_field([&](const FieldInfo& f, auto& a) {
+      if (enabled(f)) reorder_in_place(a, order);
+    });
+    if (follow_vec && follow_vec->size() >= order.size()) reorder_in_place(*follow_vec, order);
+    if (follow_dbl && follow_dbl->size() >= order.size()) reorder_in_place(*follow_dbl, order);
   }
 
   // Below this many particles the O(N) loops of the sort run serially: their parallel
@@ -221,24 +257,74 @@ struct ParticleSet {
     if constexpr (std::is_same_v<T, std::uint32_t>) return 4;
     return -1;
   }
+  // new[i] = old[order[i]] for i < order.size(), following the permutation's cycles.
+  template <class T>
+  void reorder_in_place(std::vector<T>& a, const std::vector<std::uint32_t>& order) {
+    const std::size_t n = order.size();
+    seen_.assign((n + 63) / 64, 0);
+    auto mark = [&](std::size_t i) { seen_[i / 64] |= std::uint64_t{1} << (i % 64); };
+    auto marked = [&](std::size_t i) { return (seen_[i / 64] >> (i % 64)) & 1u; };
+    for (std::size_t start = 0; start < n; ++start) {
+      if (marked(start)) continue;
+      mark(start);
+      if (order[start] == start) continue;
+      T first = a[start];
+      std::size_t i = start;
+      for (std::size_t next = order[i]; next != start; i = next, next = order[i]) {
+        a[i] = a[next];
+        mark(next);
+      }
+      a[i] = first;
+    }
+  }
+
+  // The scratch arrays of element type T for this reorder: the lent ones if any were lent for
+  // T, the set's own otherwise.
+  template <class T>
+  std::vector<T>* scratch_slot(const LentScratch<D>& lent, int k, int& slots) {
+    if constexpr (std::is_same_v<T, V>) {
+      if (lent.vec) {
+        slots = 1;
+        return lent.vec;
+      }
+    }
+    if constexpr (std::is_same_v<T, double>) {
+      const int nd = (lent.dbl[0] ? 1 : 0) + (lent.dbl[1] ? 1 : 0);
+      if (nd > 0) {
+        slots = nd;
+        return lent.dbl[0] ? (k % nd == 0 ? lent.dbl[0] : lent.dbl[1]) : lent.dbl[1];
+      }
+    }
+    if constexpr (std::is_same_v<T, std::uint32_t>) {
+      if (lent.u32) {
+        slots = 1;
+        return lent.u32;
+      }
+    }
+    slots = kSlots;
+    return &std::get<Slots<T>>(scratch_)[static_cast<std::size_t>(k % kSlots)];
+  }
+
   // Calls fn(array, its scratch array, its pass) for every enabled field. A field's pass is its
-  // ordinal among the enabled fields of its element type, divided by kSlots.
+  // ordinal among the enabled fields of its element type, divided by the number of scratch
+  // arrays of that type.
   template <class Fn>
-  void visit_pass(int pass, Fn&& fn) {
+  void visit_pass(int pass, const LentScratch<D>& lent, Fn&& fn) {
     int count[std::tuple_size_v<Scratch>] = {};
     for_each_field([&](const FieldInfo& f, auto& a) {
       using T = typename std::decay_t<decltype(a)>::value_type;
       static_assert(type_slot<T>() >= 0, "add the field's element type to ParticleSet::Scratch");
       if (!enabled(f)) return;
       const int ordinal = count[type_slot<T>()]++;
-      const int p = ordinal / kSlots;
-      auto& scratch = std::get<Slots<T>>(scratch_)[ordinal % kSlots];
-      fn(a, scratch, p);
+      int slots = kSlots;
+      std::vector<T>* scratch = scratch_slot<T>(lent, ordinal, slots);
+      fn(a, *scratch, ordinal / slots);
     });
     (void)pass;
   }
 
   Scratch scratch_;
+  std::vector<std::uint64_t> seen_;  // permute_in_place's cycle marks
   std::array<bool, kNumFields> enabled_{};
 };
 

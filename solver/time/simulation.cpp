@@ -42,6 +42,9 @@ Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles,
     throw std::invalid_argument(
         "periodic boundaries (domain.periodic) run on one rank only: a decomposed run cannot "
         "wrap its halo yet");
+  // The set-up's sorts may have allocated the set's own reorder scratch; the Simulation's sorts
+  // borrow the force buffers instead (sort_particles).
+  ps_.release_scratch();
   f_.resize(ps_.total());
   // Forces at the initial state, so acceleration() (wall loads) is valid before the first step.
   evaluate();
@@ -98,10 +101,24 @@ std::size_t Simulation<D>::fluid_count() const {
 }
 
 template <int D>
-void Simulation<D>::sort_particles() {
+void Simulation<D>::sort_particles(bool between_steps) {
   const double t0 = omp_get_wtime();
   const std::size_t before = ps_.size();
-  const auto r = grid_.sort(ps_);
+  typename CellGrid<D>::Reorder how;
+  if (between_steps) {
+    // The last evaluation's rates stay readable (wall loads, output): they follow the
+    // particles, and no scratch is needed for this rare sort.
+    how.in_place = true;
+    how.follow_vec = &f_.ace;
+    how.follow_dbl = &f_.drho;
+  } else {
+    // At the start of an evaluation the rates are dead until the forces refill them: the
+    // reorder uses them as its scratch (ParticleSet::permute), so the set keeps none of its own
+    // for those types.
+    how.lent.vec = &f_.ace;
+    how.lent.dbl = {&f_.drho, &f_.prs};
+  }
+  const auto r = grid_.sort(ps_, how);
   excluded_.out_of_domain += r.out_of_domain;
   excluded_.non_finite += r.non_finite;
   if (r.out_of_domain > 0) record_faces(ps_.size(), before);
@@ -141,7 +158,11 @@ void Simulation<D>::evaluate() {
   if (exchange_) {
     const double tm = omp_get_wtime();
     grid_.drop_ghosts(ps_);  // the last evaluation's halo
-    exchange_->migrate(ps_, steps_);
+    // The rates are dead until this evaluation's forces: the reorder's scratch.
+    LentScratch<D> lent;
+    lent.vec = &f_.ace;
+    lent.dbl = {&f_.drho, &f_.prs};
+    exchange_->migrate(ps_, steps_, lent);
     times_.neighbour += omp_get_wtime() - tm;
   }
   sort_particles();
@@ -152,7 +173,7 @@ void Simulation<D>::evaluate() {
   }
   const double t0 = omp_get_wtime();
   // Periodic images are read through the force buffers too (rare growth, amortised).
-  if (f_.ace.size() < ps_.stored()) f_.resize(ps_.stored() + ps_.stored() / 8);
+  f_.resize(ps_.stored());
   StepState<D> s = state(time_);
   for_each_hook([&](StepHook<D>& h) { h.before_forces(s); });
   refresh_images();  // walls' and re-initialised densities
@@ -239,7 +260,7 @@ void Simulation<D>::step() {
     }
   }
   if (out > 0) {
-    sort_particles();
+    sort_particles(true);
     excluded_.non_finite -= out;  // those were flagged here, not found non-finite
     excluded_.density_out_of_range += out;
   }
@@ -344,10 +365,12 @@ void Simulation<D>::step_verlet() {
 
 template <int D>
 const std::vector<double>& Simulation<D>::pressure() {
-  const std::size_t n = ps_.size();
-  f_.press.resize(ps_.total());
-  for (std::size_t i = 0; i < n; ++i) f_.press[i] = eos_.pressure(ps_.rho[i]);
-  return f_.press;
+  // Written into the P/rho^2 buffer: between steps nothing reads it (the next evaluation
+  // recomputes it), so output costs no array of its own.
+  const std::size_t n = ps_.total();
+  f_.prs.resize(n);
+  for (std::size_t i = 0; i < n; ++i) f_.prs[i] = eos_.pressure(ps_.rho[i]);
+  return f_.prs;
 }
 
 template class Simulation<2>;

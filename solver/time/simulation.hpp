@@ -67,7 +67,8 @@ class Simulation {
   void redistribute();
   std::size_t fluid_count() const;
 
-  // Pressure of every active particle in the current order (recomputed from density).
+  // Pressure of every particle (active, then excluded) in the current order, recomputed from
+  // density. Valid until the next step (the array is a force buffer the step reuses).
   const std::vector<double>& pressure();
 
   // Force per unit mass exerted by the fluid on each active wall particle (fluid particles:
@@ -95,7 +96,9 @@ class Simulation {
   double local_dt() const;
   void step_symplectic();
   void step_verlet();
-  void sort_particles();
+  // between_steps: the sort after the integration (density exclusions), which keeps the
+  // force buffers' values (reordered with the particles) instead of using them as scratch.
+  void sort_particles(bool between_steps = false);
   // Files the particles the last sort moved out of the domain, [first, last), by face.
   void record_faces(std::size_t first, std::size_t last);
   // prescribe + finish_density at time t, after an integration substep.
