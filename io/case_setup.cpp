@@ -29,8 +29,36 @@ namespace swell {
 // cell sort (~10 B), and during the set-up the fill's points twice (48 B), rounded up; the
 // measured time-loop figure is ~260 B (README, Performance). Per grid cell: its start, cursor
 // and fluid flag.
-double estimated_bytes(double particles, double grid_cells) {
-  return 400.0 * particles + 16.0 * grid_cells;
+double bytes_per_particle(const CaseSpec& spec, int dim) {
+  // Measured marginal memory of swell run (bench/RESULTS.md, "Memory per particle"): 163 B in
+  // 3D and 137 B in 2D with DBC; mDBC's wall vectors +24 B (3D), shifting's work arrays +85 B
+  // (3D). Each figure here is ~25 % above the measurement (allocator slack, set-up), and an
+  // optional vector field (mDBC normals, moving bodies' reference positions) costs 8 B per
+  // component.
+  const bool three = dim == 3;
+  double b = three ? 205.0 : 175.0;
+  bool mdbc = spec.boundary == BoundaryType::Mdbc, moving = false;
+  for (const auto& body : spec.bodies) {
+    mdbc = mdbc || body.boundary.value_or(spec.boundary) == BoundaryType::Mdbc;
+    moving = moving || body.motion.type != MotionSpec::Type::None;
+  }
+  const double vec = 8.0 * dim * 1.25;
+  if (mdbc) b += vec;
+  if (moving) b += vec * (mdbc ? 2.0 : 1.0);  // pos_ref, and normal_ref with mDBC
+  if (spec.shifting == ShiftingModel::Fickian) b += three ? 105.0 : 80.0;
+  return b;
+}
+
+double estimated_bytes(double particles, double grid_cells, double per_particle) {
+  return per_particle * particles + 16.0 * grid_cells;
+}
+
+double resident_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  double pages_total = 0.0, pages_resident = 0.0;
+  if (!(statm >> pages_total >> pages_resident)) return 0.0;
+  const long size = sysconf(_SC_PAGESIZE);
+  return size > 0 ? pages_resident * static_cast<double>(size) : 0.0;
 }
 
 double available_memory_bytes() {
@@ -81,7 +109,7 @@ std::string bytes_text(double b) {
 // or whose memory exceeds 80 % of what the machine has available, before anything is filled.
 void check_size(const CaseSpec& spec, const geometry::FillEstimate& est, int dim) {
   const double avail = available_memory_bytes();
-  const double need = estimated_bytes(est.total, 0.0);
+  const double need = estimated_bytes(est.total, 0.0, bytes_per_particle(spec, dim));
   const bool too_many = est.total > spec.max_particles;
   const bool too_big = avail > 0.0 && need > 0.8 * avail;
   if (!too_many && !too_big) return;
@@ -363,8 +391,11 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     }
     double cells = 1.0;
     for (int d = 0; d < D; ++d) cells *= std::floor((dmax[d] - dmin[d]) / support) + 3.0;
-    const double avail = available_memory_bytes();
-    const double need = estimated_bytes(static_cast<double>(s.particles.size()), cells);
+    // The particles are built by now: what this process already holds counts as available to
+    // the run (the estimate below includes them).
+    const double avail = available_memory_bytes() + resident_bytes();
+    const double need = estimated_bytes(static_cast<double>(s.particles.size()), cells,
+                                        bytes_per_particle(spec, D));
     if (cells > 4.0e9 || (avail > 0.0 && need > 0.8 * avail)) {
       std::ostringstream m;
       m << std::setprecision(3) << "domain: " << point_text(p.domain_min, D) << " - "

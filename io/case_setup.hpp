@@ -53,8 +53,13 @@ struct CaseSetup {
 
 // The memory a run of about `particles` particles needs (setup and time loop together), and
 // the memory this machine has available (MemAvailable, or the cgroup's limit if lower).
-double estimated_bytes(double particles, double grid_cells);
+// Per particle: from the measured figures of the case's features (dimension, mDBC, moving
+// bodies, shifting), with a margin.
+double bytes_per_particle(const CaseSpec& spec, int dim);
+double estimated_bytes(double particles, double grid_cells, double per_particle);
 double available_memory_bytes();
+// The memory this process holds now (resident set).
+double resident_bytes();
 
 // Builds the particles (geometry/), hydrostatic densities (bc/) and solver parameters. Mesh
 // files are read relative to the case file's folder. Throws CaseError (file and line) for a

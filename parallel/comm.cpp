@@ -172,8 +172,10 @@ void Comm::neighbour_exchange(const std::byte* lo, std::size_t lo_bytes, const s
     MPI_Isend(&out_hi, 1, MPI_UINT64_T, above, 1, MPI_COMM_WORLD, &req[nreq++]);
   }
   MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE);
-  if (in_lo + in_hi > static_cast<std::uint64_t>(INT32_MAX) || lo_bytes > INT32_MAX ||
-      hi_bytes > INT32_MAX)
+  // Each message is checked by its sender and its receiver alike (both see the same count),
+  // so the two ranks of a message both stop rather than one waiting for the other.
+  constexpr auto kMax = static_cast<std::uint64_t>(INT32_MAX);
+  if (in_lo > kMax || in_hi > kMax || out_lo > kMax || out_hi > kMax)
     throw std::runtime_error("Comm::neighbour_exchange: over 2 GiB in one message");
   if (recv.size() < in_lo + in_hi) recv.resize(in_lo + in_hi);
   nreq = 0;

@@ -74,6 +74,13 @@ compare("r2", "re1", exact=False)
 compare("r2", "re3", exact=False)
 compare("m1", "m2", exact=False)  # mDBC
 compare("a1", "a2", exact=False)  # absorbing piston on 2 ranks against 1
+# Restart at a rebalance step: the half run must end on a multiple of the interval (50 steps).
+with h5py.File(os.path.join(work, "rb_half", "checkpoint.h5"), "r") as f:
+    steps = int(f["clock"].attrs["steps"])
+print(f"rb_half: checkpoint at step {steps}")
+if steps % 50 != 0 or steps == 0:
+    failed.append(f"rb_half: checkpoint at step {steps}, not at a rebalance step (multiple of 50)")
+compare("rb_full", "rb_re", exact=True)
 if failed:
     print("FAIL:\n  " + "\n  ".join(failed))
     sys.exit(1)

@@ -12,7 +12,10 @@
 # Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
 #   - mDBC on 1 and 2 ranks (to 0.02 s);
 #   - the regular-wave flume with an absorbing piston (FLUME, 0.1 s, fixed dt) on 1 and 2
-#     ranks: the paddle's water level is reduced over the ranks; the runs agree as above.
+#     ranks: the paddle's water level is reduced over the ranks; the runs agree as above;
+#   - restart at the worst moment for the slabs: a 2-rank run (fixed dt, a rebalance every 50
+#     steps) checkpointed at step 250, so the restart's first evaluation rebalances; bit for
+#     bit the uninterrupted run (and check_ranks.py checks the checkpoint is at that step).
 # Usage: run_ranks.sh SWELL MPIRUN CASE WORKDIR FLUME
 set -eu
 swell=$1 mpirun=$2 case=$3 work=$4 flume=$5
@@ -52,4 +55,9 @@ run 2 -o m2 --set time.end=0.02 --set physics.boundary.model=mdbc > m2.log
 fl="--set bodies.1.motion.absorption=true --set time.end=0.1 --set time.dt_fixed=2e-4"
 "$swell" run "$flume" -q -t 1 -o a1 $fl > a1.log
 "$mpirun" --oversubscribe -np 2 "$swell" run "$flume" -q -t 1 -o a2 $fl > a2.log
+rb="--set time.dt_fixed=4e-5 --rebalance 50"
+run 2 -o rb_full $rb --set time.end=0.014 > rb_full.log
+run 2 -o rb_half $rb --set time.end=0.01 > rb_half.log
+cp -r rb_half rb_re
+run 2 --restart rb_re $rb --set time.end=0.014 > rb_re.log
 exec python3 "$here/check_ranks.py" "$work"
