@@ -113,11 +113,16 @@ void Comm::sum_in_place(std::vector<double>& v) const {
 }
 
 std::vector<std::uint64_t> Comm::gather_all(std::uint64_t x) const {
-  std::vector<std::uint64_t> all(static_cast<std::size_t>(size_), x);
+  std::vector<std::uint64_t> all;
+  gather_all(x, all);
+  return all;
+}
+
+void Comm::gather_all(std::uint64_t x, std::vector<std::uint64_t>& all) const {
+  all.assign(static_cast<std::size_t>(size_), x);
 #ifdef SWELL_HAVE_MPI
   if (mpi_) MPI_Allgather(&x, 1, MPI_UINT64_T, all.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
 #endif
-  return all;
 }
 
 void Comm::alltoallv(const std::vector<std::byte>& send, const std::vector<int>& send_count,

@@ -33,6 +33,7 @@ class Comm {
   void sum_in_place(std::vector<double>& v) const;
   // Every rank's value, in rank order.
   std::vector<std::uint64_t> gather_all(std::uint64_t x) const;
+  void gather_all(std::uint64_t x, std::vector<std::uint64_t>& all) const;  // into `all`
 
   // All-to-all of bytes: send[send_displ[r], send_displ[r] + send_count[r]) goes to rank r;
   // recv is resized to hold what arrives, rank r's part at recv_displ[r] (count recv_count[r]).

@@ -341,16 +341,17 @@ ParticleSet<D> share_by_layout(const ParticleSet<D>& all, const GatherLayout& la
 struct GatherBuffers {
   std::vector<std::byte> send, recv;
   std::vector<int> send_count, recv_count, recv_displ;
+  GatherLayout layout;  // the last gather's (gather_to_root returns it)
 };
 
 template <int D>
-GatherLayout gather_to_root(const ParticleSet<D>& ps, const Comm& comm, ParticleSet<D>& out,
-                            const std::vector<Vec<D>>* extra, std::vector<Vec<D>>* extra_out,
-                            GatherBuffers& buf) {
+const GatherLayout& gather_to_root(const ParticleSet<D>& ps, const Comm& comm, ParticleSet<D>& out,
+                                   const std::vector<Vec<D>>* extra, std::vector<Vec<D>>* extra_out,
+                                   GatherBuffers& buf) {
   const std::size_t rec = record_bytes(ps), xrec = extra ? sizeof(Vec<D>) : 0;
-  GatherLayout layout;
-  layout.active = comm.gather_all(ps.size());
-  layout.excluded = comm.gather_all(ps.total() - ps.size());
+  GatherLayout& layout = buf.layout;  // reused: no allocation per gather once sized
+  comm.gather_all(ps.size(), layout.active);
+  comm.gather_all(ps.total() - ps.size(), layout.excluded);
   const auto n = static_cast<std::size_t>(comm.size());
   // Two rounds: the active particles (with their extra values), then the excluded ones.
   for (int round = 0; round < 2; ++round) {

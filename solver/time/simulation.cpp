@@ -186,7 +186,12 @@ template <int D>
 void Simulation<D>::redistribute() {
   if (!exchange_) return;
   grid_.drop_ghosts(ps_);
-  exchange_->migrate(ps_, -1);
+  // acceleration() and density_rate() are stale after this (documented): their buffers are
+  // the reorder's scratch, as in evaluate().
+  LentScratch<D> lent;
+  lent.vec = &f_.ace;
+  lent.dbl = {&f_.drho, &f_.prs};
+  exchange_->migrate(ps_, -1, lent);
 }
 
 template <int D>
