@@ -393,7 +393,8 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     for (int d = 0; d < D; ++d) cells *= std::floor((dmax[d] - dmin[d]) / support) + 3.0;
     // The particles are built by now: what this process already holds counts as available to
     // the run (the estimate below includes them).
-    const double avail = available_memory_bytes() + resident_bytes();
+    const double free_now = available_memory_bytes();
+    const double avail = free_now > 0.0 ? free_now + resident_bytes() : 0.0;  // 0: unknown
     const double need = estimated_bytes(static_cast<double>(s.particles.size()), cells,
                                         bytes_per_particle(spec, D));
     if (cells > 4.0e9 || (avail > 0.0 && need > 0.8 * avail)) {

@@ -192,6 +192,8 @@ void Simulation<D>::redistribute() {
   lent.vec = &f_.ace;
   lent.dbl = {&f_.drho, &f_.prs};
   exchange_->migrate(ps_, -1, lent);
+  // Stale but sized: a second gather before the next step reads one acceleration per particle.
+  f_.resize(ps_.total());
 }
 
 template <int D>

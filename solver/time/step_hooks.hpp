@@ -25,7 +25,9 @@ template <int D>
 struct StepState {
   ParticleSet<D>& particles;
   const CellGrid<D>& grid;  // sorted for the current positions in the force stages
-  ForceBuffers<D>& forces;  // rates of the last evaluation
+  // Rates of the last evaluation, from after_forces on. In before_forces they hold nothing
+  // meaningful: the sort used them as its reorder scratch (ParticleSet::permute).
+  ForceBuffers<D>& forces;
   const SolverParams& params;
   const TaitEos& eos;
   double time;  // the time the particles are at (the substep time in prescribe)
