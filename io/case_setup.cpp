@@ -25,10 +25,9 @@
 
 namespace swell {
 
-// Per particle: the state and integrator fields (~130 B in 3D), force buffers (~70 B), the
-// cell sort (~10 B), and during the set-up the fill's points twice (48 B), rounded up; the
-// measured time-loop figure is ~260 B (README, Performance). Per grid cell: its start, cursor
-// and fluid flag.
+// Per particle: the state and integrator fields (103 B in 3D), the force buffers (40 B, also
+// the sort's scratch), cell ids and sort order (8 B), and what the case's features add. The
+// set-up's peak (fill points, hydrostatic sort in place) is below the time loop's.
 double bytes_per_particle(const CaseSpec& spec, int dim) {
   // Measured marginal memory of swell run (bench/RESULTS.md, "Memory per particle"): 163 B in
   // 3D and 137 B in 2D with DBC; mDBC's wall vectors +24 B (3D), shifting's work arrays +85 B
@@ -49,6 +48,7 @@ double bytes_per_particle(const CaseSpec& spec, int dim) {
   return b;
 }
 
+// Per grid cell: its start, cursor and fluid flag.
 double estimated_bytes(double particles, double grid_cells, double per_particle) {
   return per_particle * particles + 16.0 * grid_cells;
 }

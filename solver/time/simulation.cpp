@@ -101,6 +101,14 @@ std::size_t Simulation<D>::fluid_count() const {
 }
 
 template <int D>
+LentScratch<D> Simulation<D>::lent_force_buffers() {
+  LentScratch<D> lent;
+  lent.vec = &f_.ace;
+  lent.dbl = {&f_.drho, &f_.prs};
+  return lent;
+}
+
+template <int D>
 void Simulation<D>::sort_particles(bool between_steps) {
   const double t0 = omp_get_wtime();
   const std::size_t before = ps_.size();
@@ -115,8 +123,7 @@ void Simulation<D>::sort_particles(bool between_steps) {
     // At the start of an evaluation the rates are dead until the forces refill them: the
     // reorder uses them as its scratch (ParticleSet::permute), so the set keeps none of its own
     // for those types.
-    how.lent.vec = &f_.ace;
-    how.lent.dbl = {&f_.drho, &f_.prs};
+    how.lent = lent_force_buffers();
   }
   const auto r = grid_.sort(ps_, how);
   excluded_.out_of_domain += r.out_of_domain;
@@ -159,10 +166,7 @@ void Simulation<D>::evaluate() {
     const double tm = omp_get_wtime();
     grid_.drop_ghosts(ps_);  // the last evaluation's halo
     // The rates are dead until this evaluation's forces: the reorder's scratch.
-    LentScratch<D> lent;
-    lent.vec = &f_.ace;
-    lent.dbl = {&f_.drho, &f_.prs};
-    exchange_->migrate(ps_, steps_, lent);
+    exchange_->migrate(ps_, steps_, lent_force_buffers());
     times_.neighbour += omp_get_wtime() - tm;
   }
   sort_particles();
@@ -188,10 +192,7 @@ void Simulation<D>::redistribute() {
   grid_.drop_ghosts(ps_);
   // acceleration() and density_rate() are stale after this (documented): their buffers are
   // the reorder's scratch, as in evaluate().
-  LentScratch<D> lent;
-  lent.vec = &f_.ace;
-  lent.dbl = {&f_.drho, &f_.prs};
-  exchange_->migrate(ps_, -1, lent);
+  exchange_->migrate(ps_, -1, lent_force_buffers());
   // Stale but sized: a second gather before the next step reads one acceleration per particle.
   f_.resize(ps_.total());
 }

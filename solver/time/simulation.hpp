@@ -99,6 +99,9 @@ class Simulation {
   // between_steps: the sort after the integration (density exclusions), which keeps the
   // force buffers' values (reordered with the particles) instead of using them as scratch.
   void sort_particles(bool between_steps = false);
+  // The force buffers as a reorder's scratch (only where the rates are dead: the start of an
+  // evaluation, redistribute).
+  LentScratch<D> lent_force_buffers();
   // Files the particles the last sort moved out of the domain, [first, last), by face.
   void record_faces(std::size_t first, std::size_t last);
   // prescribe + finish_density at time t, after an integration substep.
