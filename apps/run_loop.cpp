@@ -64,6 +64,100 @@ struct Timer {
   }
 };
 
+// An output round of a decomposed run: what rank 0 tells every rank after a step (one number
+// through comm.max; the others send 0), so that all of them make the same collective calls in
+// the same order. Bits below 256; the number of the snapshot written in the round from 256 up.
+enum RoundBits : unsigned {
+  kRound = 1,        // something is due: the run's counts, then settle() at the end
+  kGather = 2,       // gauges (or snapshot/checkpoint without parallel HDF5) read a gather
+  kWatch = 4,        // the watchdog checks
+  kDiag = 8,         // a diagnostics row
+  kSnapshot = 16,    // a snapshot (VTK, HDF5)
+  kCheckpoint = 32,  // a checkpoint (after a watchdog check)
+};
+struct Round {
+  unsigned bits = 0;
+  int snapshot = 0;  // its number, when kSnapshot
+};
+Round announce(const parallel::Comm& comm, Round r) {
+  if (comm.size() == 1) return r;
+  const auto v = static_cast<std::uint64_t>(comm.max(r.bits + 256.0 * r.snapshot));
+  return {static_cast<unsigned>(v & 255u), static_cast<int>(v >> 8)};
+}
+
+// The diagnostics row (steps, dt, fluid count, mass, kinetic energy, max speed, front) over
+// every rank: each its own particles, combined by `red` (collective).
+template <int D, class Reduce>
+std::vector<double> diagnostics_row(const ParticleSet<D>& local, const Reduce& red, long steps,
+                                    double dt, const Vec<D>& up, double floor, double band,
+                                    double dp) {
+  const auto tot = fluid_totals(local);
+  const double count = red.sum(static_cast<double>(tot.count));
+  const double mass = red.sum(tot.mass), ke = red.sum(tot.kinetic_energy);
+  const double vmax = red.max(tot.max_speed);
+  const double front = red.max(surge_front(local, up, floor, band, dp));
+  return {double(steps), dt, count, mass, ke, vmax, front};
+}
+
+// The VTK files of snapshot `k` (relative to the output folder): vtk/<name>[_part]_NNNN.vtp,
+// or .pvtp on several ranks with shared output (pieces: vtk_piece_name).
+std::string vtk_file(const std::string& name, const char* part, int k, bool pieces) {
+  char num[32];
+  std::snprintf(num, sizeof(num), "_%04d", k);
+  return "vtk/" + name + part + num + (pieces ? ".pvtp" : ".vtp");
+}
+
+// The collective part of a snapshot of a decomposed run with shared output: every rank writes
+// its VTK pieces and its rows of the HDF5 snapshot; rank 0 (h5/pvd given) also the .pvtp files,
+// the .pvd entries and the HDF5 run file's index. Every rank ends at the same agreement: on any
+// rank's failure rank 0 throws, the others return false.
+template <int D>
+bool shared_snapshot(const fs::path& out, const CaseSpec& spec, int k, long step, double time,
+                     const ParticleSet<D>& ps, const std::vector<double>& p,
+                     const std::vector<std::string>& body_names, const WriteShare& share,
+                     const parallel::Comm& comm, Hdf5RunFile* h5, std::vector<PvdSeries*> pvds) {
+  const bool root = comm.rank() == 0;
+  std::string err;
+  if (spec.vtk) {
+    try {
+      std::vector<std::pair<const char*, ParticleFilter>> parts = {{"", ParticleFilter::All}};
+      if (spec.vtk_split)
+        parts.insert(parts.end(),
+                     {{"_fluid", ParticleFilter::Fluid}, {"_boundary", ParticleFilter::Boundary}});
+      for (std::size_t j = 0; j < parts.size(); ++j) {
+        const std::string rel = vtk_file(spec.name, parts[j].first, k, true);
+        const std::string vtp = rel.substr(0, rel.size() - 5) + ".vtp";
+        write_vtp<D>((out / vtk_piece_name(vtp, comm.rank())).string(), ps, p, parts[j].second,
+                     &body_names, time);
+        if (!root) continue;
+        std::vector<std::string> pieces;
+        for (int r = 0; r < comm.size(); ++r)
+          pieces.push_back(fs::path(vtk_piece_name(vtp, r)).filename().string());
+        write_pvtp((out / rel).string(), pieces, ps.normal.size() == ps.total(), true);
+        pvds.at(j)->add(time, rel);
+      }
+    } catch (const std::exception& e) {
+      err = e.what();
+    }
+  }
+  if (comm.min(err.empty() ? 1.0 : 0.0) < 1.0) {
+    if (!root) {
+      if (!err.empty()) std::fprintf(stderr, "swell (rank %d): %s\n", comm.rank(), err.c_str());
+      return false;
+    }
+    throw std::runtime_error(err.empty() ? "another rank could not write its VTK piece of "
+                                           "snapshot " +
+                                               std::to_string(k) + " (that rank's message is above)"
+                                         : err);
+  }
+  if (!spec.hdf5) return true;
+  if (root) {
+    h5->write_snapshot<D>(step, time, ps, p, &share);
+    return true;
+  }
+  return write_snapshot_rows<D>((out / (spec.name + ".h5")).string(), step, ps, p, share);
+}
+
 // The damping zones for the run header, one clause each.
 std::string damping_text(const std::vector<DampingZone>& zones, int dim) {
   if (zones.empty()) return "none";
@@ -297,12 +391,22 @@ std::string decomposition_report(const Simulation<D>& sim, const parallel::Comm&
   return o.str();
 }
 
+// Whether the ranks write their own particles into snapshots and checkpoints (parallel HDF5),
+// else rank 0 writes them from a gather. SWELL_GATHER_OUTPUT=1 forces the gather (the tests
+// compare the two).
+bool use_shared_output(const parallel::Comm& comm) {
+  const char* g = std::getenv("SWELL_GATHER_OUTPUT");
+  return comm.size() > 1 && parallel_hdf5() && !(g && std::string(g) == "1");
+}
+
 // Ranks 1..N-1 of a decomposed run: the same simulation calls and collectives as rank 0's
-// run_dim, in the same order, and no output of their own.
+// run_dim, in the same order, and no output of their own but their share of the snapshots and
+// checkpoints (shared output).
 template <int D>
 RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const parallel::Comm& comm) {
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const std::string out_dir = opt.out_dir.empty() ? "out/" + spec.name : opt.out_dir;
+  const fs::path out(out_dir);
   RunProtocol proto(comm);
   std::optional<CaseSetup<D>> made;
   try {
@@ -315,7 +419,7 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
   proto.agree();  // rank 0: folder, logs, checkpoint checks
   std::optional<Simulation<D>> sim;
   if (opt.restart) {
-    const std::string ck = latest_valid_checkpoint((fs::path(out_dir) / "checkpoint.h5").string());
+    const std::string ck = latest_valid_checkpoint((out / "checkpoint.h5").string());
     Checkpoint<D> c = read_checkpoint<D>(ck);
     sim.emplace(
         build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm, opt.rebalance_every));
@@ -328,19 +432,51 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
     sim.emplace(
         build_simulation<D>(setup, std::move(setup.particles), nullptr, comm, opt.rebalance_every));
   }
-  RunView<D> view(*sim, comm);
-  view.sync();
-  proto.agree();  // rank 0: watchdog, output files, the first outputs
+  RunView<D> view(*sim, comm, use_shared_output(comm));
+  view.reduce_counts();
+  view.settle();
+  Watchdog<D> watchdog(spec.watchdog, view.local(), setup.floor, view);
+  std::vector<std::string> names;
+  for (const auto& b : setup.bodies) names.push_back(b.name);
+  const Vec<D> up = Vec<D>::Unit(D - 1);
+  const double band = 2.0 * setup.params.h;
+  const std::string ck_path = (out / "checkpoint.h5").string();
+  // Rank 0's output round, from this rank's side (see run_dim's `round`).
+  auto round = [&](Round r) {
+    if (r.bits & kRound) view.reduce_counts();
+    if (r.bits & kGather) view.gather();
+    if (r.bits & (kWatch | kCheckpoint)) watchdog.check(view.local(), view);
+    if (r.bits & kDiag)
+      diagnostics_row(sim->particles(), view, sim->steps(), sim->dt(), up, setup.floor, band,
+                      spec.dp);
+    WriteShare share;
+    const bool shared = view.shared_output() && (r.bits & (kSnapshot | kCheckpoint));
+    if (shared) share = view.share();
+    proto.agree();  // rank 0's own outputs
+    if (shared) {
+      bool ok = true;
+      if (r.bits & kSnapshot)
+        ok = shared_snapshot<D>(out, spec, r.snapshot, sim->steps(), sim->time(), sim->particles(),
+                                view.local_pressure(), names, share, comm, nullptr, {});
+      if (ok && (r.bits & kCheckpoint))
+        ok = write_checkpoint_rows<D>(ck_path, sim->particles(), share);
+      if (!ok) throw PeerFailed(1);  // rank 0 says why
+    }
+    if (r.bits & kRound) view.settle();
+  };
+  proto.agree();  // rank 0: watchdog, output files
+  if (!opt.restart) round(announce(comm, {}));
+  proto.agree();
   const auto loop0 = std::chrono::steady_clock::now();
   const long step0 = sim->steps();
   while (sim->time() < spec.t_end) {
     if (const int sig = static_cast<int>(comm.max(static_cast<double>(stop_requested())))) {
-      view.sync();
-      proto.agree();  // rank 0 writes the checkpoint
+      round({kRound | kCheckpoint | (view.shared_output() ? 0u : unsigned{kGather}), 0});
+      proto.agree();
       throw Interrupted(sig, "stopped");
     }
     sim->step();
-    if (comm.max(0.0) > 0.0) view.sync();
+    round(announce(comm, {}));
     proto.agree();  // rank 0: gauges, watchdog, outputs
   }
   const double loop_s =
@@ -537,12 +673,14 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
     }
     sim->restore_faces(f);
   }
-  // What the outputs read: the simulation itself, or every rank's particles gathered here.
-  RunView<D> view(*sim, comm);
+  // What the outputs read: the simulation itself; on several ranks each rank's own particles,
+  // combined, or gathered here.
+  RunView<D> view(*sim, comm, use_shared_output(comm));
   proto.symmetric();
-  view.sync();
+  view.reduce_counts();
+  view.settle();
+  Watchdog<D> watchdog(spec.watchdog, view.local(), setup.floor, view);
   proto.root_work();
-  Watchdog<D> watchdog(spec.watchdog, view, setup.floor);
   {
     std::vector<std::string> names;
     for (const auto& b : setup.bodies) names.push_back(b.name);
@@ -598,19 +736,18 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
   GaugeSet<D> gauges(spec.gauges, gauge_every, gctx, out_dir, spec.name, resume_after);
   gauges.load_schedule(schedule);
 
+  // A snapshot from rank 0 alone: one rank, or the particles gathered here.
   auto write_snapshot = [&]() {
     const double t0 = omp_get_wtime();
     const auto& p = view.pressure();
-    char num[32];
-    std::snprintf(num, sizeof(num), "_%04d.vtp", snapshot);
     if (spec.vtk) {
-      const std::string rel = "vtk/" + spec.name + num;
+      const std::string rel = vtk_file(spec.name, "", snapshot, false);
       write_vtp<D>((out / rel).string(), view.particles(), p, ParticleFilter::All, &meta.body_names,
                    sim->time());
       pvd.add(sim->time(), rel);
       if (spec.vtk_split) {
-        const std::string rf = "vtk/" + spec.name + "_fluid" + num,
-                          rb = "vtk/" + spec.name + "_boundary" + num;
+        const std::string rf = vtk_file(spec.name, "_fluid", snapshot, false),
+                          rb = vtk_file(spec.name, "_boundary", snapshot, false);
         write_vtp<D>((out / rf).string(), view.particles(), p, ParticleFilter::Fluid,
                      &meta.body_names, sim->time());
         write_vtp<D>((out / rb).string(), view.particles(), p, ParticleFilter::Boundary,
@@ -620,24 +757,11 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
       }
     }
     if (h5) h5->write_snapshot<D>(sim->steps(), sim->time(), view.particles(), p);
-    ++snapshot;
-    ++sum.snapshots;
     sum.output_seconds += omp_get_wtime() - t0;
   };
-  auto write_diag = [&]() {
-    const auto tot = fluid_totals(view.particles());
-    diag.write_row(
-        sim->time(),
-        {double(sim->steps()), sim->dt(), double(tot.count), tot.mass, tot.kinetic_energy,
-         tot.max_speed, surge_front(view.particles(), up, setup.floor, band, spec.dp)},
-        std::vector<bool>(7, true));
-  };
-  auto watch = [&]() {
-    if (watchdog.check(view)) log << "  " << watchdog.warning() << "\n" << std::flush;
-  };
-  auto write_checkpoint_now = [&]() {
-    watch();  // a checkpoint is written only while the run is healthy
-    const double t0 = omp_get_wtime();
+  // The checkpoint's schedule: the runner's timers, the gauges' and hooks' state, the faces'
+  // exclusions and, on several ranks, the slabs and each rank's share of the file.
+  auto checkpoint_schedule = [&](const std::optional<WriteShare>& share) {
     std::map<std::string, double> s;
     const FaceExclusions& fx = view.excluded_faces();
     for (int k = 0; k < FaceExclusions::kFaces; ++k) {
@@ -656,38 +780,95 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
     gauges.save_schedule(s);
     sim->save_hooks(s);
     if (view.decomposed()) {
-      // Slab bounds and each rank's share of the file, for a restart on as many ranks.
       sim->exchange()->save(s);
-      const auto& l = view.layout();
-      for (std::size_t r = 0; r < l.active.size(); ++r) {
-        s["decomposition.active." + std::to_string(r)] = static_cast<double>(l.active[r]);
-        s["decomposition.excluded." + std::to_string(r)] = static_cast<double>(l.excluded[r]);
+      const auto& active = share ? share->active : view.layout().active;
+      const auto& excluded = share ? share->excluded : view.layout().excluded;
+      for (std::size_t r = 0; r < active.size(); ++r) {
+        s["decomposition.active." + std::to_string(r)] = static_cast<double>(active[r]);
+        s["decomposition.excluded." + std::to_string(r)] = static_cast<double>(excluded[r]);
       }
     }
-    diag.flush();
-    gauges.flush();
-    write_checkpoint<D>(ck_path, view.particles(), view.clock(), s, tag);
-    last_checkpoint = sim->time();
-    sum.output_seconds += omp_get_wtime() - t0;
+    return s;
   };
-  // Everything due at the current time, in a fixed order.
-  auto outputs = [&](bool final_state) {
+  // What is due now (rank 0 decides; announce() tells the other ranks).
+  auto plan = [&](bool after_step, bool final_state) {
     const double t = sim->time();
-    if (diag_timer.due(t)) {
-      write_diag();
+    Round r{0, snapshot};
+    if (gauges.due(t) || (after_step && gauges.averages())) r.bits |= kGather;
+    if (after_step && watchdog.due(sim->steps())) r.bits |= kWatch;
+    if (diag_timer.due(t)) r.bits |= kDiag;
+    if (out_timer.due(t) || (final_state && out_timer.next > t + 1e-12 && snapshot > 0))
+      r.bits |= kSnapshot;
+    if (ck_timer.due(t) || final_state) r.bits |= kCheckpoint;
+    if (!view.shared_output() && (r.bits & (kSnapshot | kCheckpoint))) r.bits |= kGather;
+    if (r.bits) r.bits |= kRound;
+    return r;
+  };
+  // Rank 0's side of an output round (run_worker has the others'): the collectives every rank
+  // makes alike (the run's counts, the gather, the watchdog, the diagnostics: a failure there
+  // is every rank's); rank 0's own outputs (diagnostics row, gauges, and from a gather the
+  // snapshot and checkpoint), agreed; then the shared snapshot and checkpoint, and settle().
+  // A checkpoint is written only after a watchdog check found the run healthy.
+  auto round = [&](Round r, bool after_step, bool stop) {
+    const double t = sim->time();
+    proto.symmetric();
+    if (r.bits & kRound) view.reduce_counts();
+    if (r.bits & kGather) view.gather();
+    const bool warned = (r.bits & (kWatch | kCheckpoint)) && watchdog.check(view.local(), view);
+    std::vector<double> row;
+    if (r.bits & kDiag)
+      row = diagnostics_row(sim->particles(), view, sim->steps(), sim->dt(), up, setup.floor, band,
+                            spec.dp);
+    std::optional<WriteShare> share;
+    if (view.shared_output() && (r.bits & (kSnapshot | kCheckpoint))) share = view.share();
+    proto.root_work();
+    if (warned) log << "  " << watchdog.warning() << "\n" << std::flush;
+    if (after_step && gauges.averages())
+      gauges.accumulate(sim->dt(), view.particles(), view.pressure());
+    if (r.bits & kDiag) {
+      diag.write_row(t, row, std::vector<bool>(7, true));
       diag_timer.advance(t);
     }
-    if (gauges.due(t)) gauges.sample(t, view.particles(), view.pressure(), view.acceleration());
-    if (out_timer.due(t) || (final_state && out_timer.next > t + 1e-12 && snapshot > 0)) {
-      write_snapshot();
-      out_timer.advance(t);
+    if (!stop && gauges.due(t))
+      gauges.sample(t, view.particles(), view.pressure(), view.acceleration());
+    if (r.bits & kSnapshot) {
+      if (!share) write_snapshot();
+      if (!stop) out_timer.advance(t);
+      ++snapshot;
+      ++sum.snapshots;
     }
-    if (ck_timer.due(t) || final_state) {
-      if (ck_timer.due(t)) ck_timer.advance(t);
-      write_checkpoint_now();
+    std::map<std::string, double> ck;
+    if (r.bits & kCheckpoint) {
+      const double t0 = omp_get_wtime();
+      if (!stop && ck_timer.due(t)) ck_timer.advance(t);
+      ck = checkpoint_schedule(share);
+      diag.flush();
+      gauges.flush();
+      if (!share) {
+        write_checkpoint<D>(ck_path, view.particles(), view.clock(), ck, tag);
+        last_checkpoint = t;
+      }
+      sum.output_seconds += omp_get_wtime() - t0;
     }
+    proto.agree();
+    proto.symmetric();
+    if (share) {
+      const double t0 = omp_get_wtime();
+      if (r.bits & kSnapshot)
+        shared_snapshot<D>(out, spec, r.snapshot, sim->steps(), t, sim->particles(),
+                           view.local_pressure(), meta.body_names, *share, comm,
+                           h5 ? &*h5 : nullptr, {&pvd, &pvd_fluid, &pvd_bound});
+      if (r.bits & kCheckpoint) {
+        write_checkpoint<D>(ck_path, sim->particles(), view.clock(), ck, tag, &*share);
+        last_checkpoint = t;
+      }
+      sum.output_seconds += omp_get_wtime() - t0;
+    }
+    if (r.bits & kRound) view.settle();
+    proto.root_work();
   };
-  if (!opt.restart) outputs(false);
+  proto.agree();
+  if (!opt.restart) round(announce(comm, plan(false, false)), false, false);
   proto.agree();
 
   const bool tty = isatty(fileno(stderr));
@@ -703,9 +884,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
       if (sig) {
         // SIGINT/SIGTERM: everything consistent on disk at this step, then leave.
         if (opt.progress && tty) std::fprintf(stderr, "\n");
-        view.sync();
-        proto.root_work();
-        write_checkpoint_now();
+        round({kRound | kCheckpoint | (view.shared_output() ? 0u : unsigned{kGather}), 0}, false,
+              true);
         proto.agree();
         std::ostringstream m;
         m << "stopped by "
@@ -717,17 +897,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
         throw Interrupted(sig, m.str());
       }
       sim->step();
-      if (view.decomposed()) {
-        // Gather only when something reads the particles after this step.
-        const double t = sim->time();
-        const bool need = gauges.averages() || watchdog.due(sim->steps()) || gauges.due(t) ||
-                          diag_timer.due(t) || out_timer.due(t) || ck_timer.due(t) || t >= t_end;
-        if (comm.max(need ? 1.0 : 0.0) > 0.0) view.sync();
-        proto.root_work();
-      }
-      if (gauges.averages()) gauges.accumulate(sim->dt(), view.particles(), view.pressure());
-      if (watchdog.due(sim->steps())) watch();
-      outputs(sim->time() >= t_end);
+      round(announce(comm, plan(true, sim->time() >= t_end)), true, false);
       const auto now = std::chrono::steady_clock::now();
       if (now - last_progress > std::chrono::seconds(2) || sim->time() >= t_end) {
         last_progress = now;

@@ -1,18 +1,25 @@
 // What the output side of `swell run` reads of a simulation (apps/run_loop.cpp): particles,
 // pressures, accelerations, clock and exclusion counts. On one rank it is the Simulation
-// itself (no copy: the outputs are bitwise what they were). On several ranks (issue #16)
-// sync() gathers every rank's particles and accelerations to rank 0 and reduces the
-// exclusion counts, so rank 0's gauges, snapshots, checkpoints, diagnostics and watchdog read
-// the whole run as if it ran on one rank. sync() is collective; rank 0 alone reads the view.
-// Its cost is one O(N) gather per sync: the limit of this design beyond a few ranks (the
-// README, "Several ranks", says how it grows).
+// itself (no copy: the outputs are bitwise what they were). On several ranks (issue #16):
+//   - reduce_counts() gives every rank the run's exclusion counts, and the view is a reducer
+//     (sum, min, max, max_with) over the ranks: the watchdog and the diagnostics read each
+//     rank's own particles (local()) and combine;
+//   - with shared output (parallel HDF5), every rank writes its own particles into the
+//     snapshots and checkpoints (share(): the counts that place its rows);
+//   - gather() brings every rank's particles and accelerations to rank 0, for the gauges, and
+//     for snapshots and checkpoints where the build has no parallel HDF5;
+//   - settle() moves the particles that left their slab to their owners once the outputs of a
+//     step are written.
+// All of these are collective. A gather costs O(N) on rank 0 (the README, "Several ranks").
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <vector>
 
+#include "io/hdf5_file.hpp"
 #include "parallel/comm.hpp"
 #include "parallel/decomposition.hpp"
 #include "solver/time/simulation.hpp"
@@ -22,26 +29,74 @@ namespace swell {
 template <int D>
 class RunView {
  public:
-  RunView(Simulation<D>& sim, parallel::Comm comm) : sim_(sim), comm_(comm) {}
+  // `shared_output`: the ranks write their own particles into snapshots and checkpoints
+  // (needs parallel HDF5); else rank 0 writes them from a gather.
+  RunView(Simulation<D>& sim, parallel::Comm comm, bool shared_output)
+      : sim_(sim), comm_(comm), shared_(shared_output && comm.size() > 1) {}
 
   bool decomposed() const { return comm_.size() > 1; }
   bool root() const { return comm_.rank() == 0; }
+  bool shared_output() const { return shared_; }
   const parallel::Comm& comm() const { return comm_; }
   Simulation<D>& simulation() { return sim_; }
 
-  // Collective on several ranks; nothing on one. After the gather, the particles that left
-  // their rank's slab since the last step's sort move to their owners: the gathered layout
-  // then describes exactly the state a restart from it rebuilds (Simulation's first sort
-  // migrates the same particles from the same order), so a restart on the same number of
-  // ranks continues bit for bit.
+  // Collective on several ranks; nothing on one: the whole state on rank 0 (gather), the run's
+  // counts on every rank, then the particles that left their slab to their owners (settle).
   void sync() {
+    gather();
+    reduce_counts();
+    settle();
+  }
+
+  // Collective: every rank's particles and accelerations on rank 0 (layout() says where each
+  // rank's are).
+  void gather() {
     if (!decomposed()) return;
     const Simulation<D>& s = sim_;
     layout_ =
         parallel::gather_to_root<D>(s.particles(), comm_, all_, &s.acceleration(), &ace_, buf_);
-    sim_.redistribute();
-    // Exclusion counts and faces: sums, first and last times; the worst density exclusion
-    // from the rank that saw the largest ratio.
+  }
+
+  // Collective: the particles that left their rank's slab since the last step's sort move to
+  // their owners. Called after a step's outputs: the state they saved (a gather or the shared
+  // rows) is then exactly the one a restart from it rebuilds (Simulation's first sort migrates
+  // the same particles from the same order), so a restart on as many ranks continues bit for
+  // bit.
+  void settle() {
+    if (decomposed()) sim_.redistribute();
+  }
+
+  // Collective: this rank's place in a file every rank writes (every rank's counts).
+  WriteShare share() const {
+    WriteShare w;
+    w.rank = comm_.rank();
+    const auto& ps = sim_.particles();
+    comm_.gather_all(ps.size(), w.active);
+    comm_.gather_all(ps.total() - ps.size(), w.excluded);
+    return w;
+  }
+
+  // Reducer over the ranks (collective; solver/diagnostics.hpp SingleProcess has the same).
+  double sum(double x) const { return decomposed() ? comm_.sum(x) : x; }
+  double min(double x) const { return decomposed() ? comm_.min(x) : x; }
+  double max(double x) const { return decomposed() ? comm_.max(x) : x; }
+  template <std::size_t K>
+  double max_with(double value, std::array<double, K>& payload) const {
+    if (!decomposed()) return value;
+    const double m = comm_.max(value);
+    const int owner = static_cast<int>(comm_.min(value == m ? comm_.rank() : 1e9));
+    payload_.assign(payload.begin(), payload.end());
+    if (owner != comm_.rank()) std::fill(payload_.begin(), payload_.end(), 0.0);
+    comm_.sum_in_place(payload_);
+    std::copy(payload_.begin(), payload_.end(), payload.begin());
+    return m;
+  }
+
+  // Collective: the run's exclusion counts and faces on every rank (sums, first and last
+  // times; the worst density exclusion from the rank that saw the largest ratio).
+  void reduce_counts() {
+    if (!decomposed()) return;
+    const Simulation<D>& s = sim_;
     const ExclusionCounts& e = s.excluded();
     excluded_.out_of_domain = comm_.sum(std::uint64_t{e.out_of_domain});
     excluded_.non_finite = comm_.sum(std::uint64_t{e.non_finite});
@@ -78,6 +133,28 @@ class RunView {
     for (int d = 0; d < D; ++d) worst_.pos[d] = comm_.sum(mine ? w.pos[d] : 0.0);
   }
 
+  // This rank's own particles, with the run's counts (what the watchdog reads).
+  class Local {
+   public:
+    explicit Local(const RunView& v) : v_(v) {}
+    const ParticleSet<D>& particles() const { return v_.sim_.particles(); }
+    const SolverParams& params() const { return v_.params(); }
+    double time() const { return v_.time(); }
+    long steps() const { return v_.steps(); }
+    const ExclusionCounts& excluded() const { return v_.excluded(); }
+    const FaceExclusions& excluded_faces() const { return v_.excluded_faces(); }
+    const typename Simulation<D>::DensityExclusion& worst_density_exclusion() const {
+      return v_.worst_density_exclusion();
+    }
+
+   private:
+    const RunView& v_;
+  };
+  Local local() const { return Local(*this); }
+  // This rank's pressures (valid until the next step).
+  const std::vector<double>& local_pressure() { return sim_.pressure(); }
+
+  // The whole run's particles: on rank 0 after a gather (one rank: the simulation's).
   const ParticleSet<D>& particles() const { return decomposed() ? all_ : sim_.particles(); }
   const std::vector<Vec<D>>& acceleration() const {
     return decomposed() ? ace_ : sim_.acceleration();
@@ -111,6 +188,8 @@ class RunView {
  private:
   Simulation<D>& sim_;
   parallel::Comm comm_;
+  bool shared_ = false;
+  mutable std::vector<double> payload_;  // max_with's buffer
   ParticleSet<D> all_;
   std::vector<Vec<D>> ace_;
   std::vector<double> press_;

@@ -195,6 +195,129 @@ void write_h5_atomically(const std::string& path, Fill&& fill, Hook&& before_ren
   sync_path(dir.empty() ? "." : dir.string(), true);
 }
 
+// ---- Files several ranks write (parallel HDF5) ---------------------------------------------
+
+// The offsets of this rank's rows in a shared file: its active rows start after the lower
+// ranks' active ones, its excluded rows after every active row and the lower ranks' excluded.
+struct ShareRows {
+  std::uint64_t active_first = 0, active_total = 0, excluded_first = 0, total = 0;
+};
+
+ShareRows share_rows(const WriteShare& w) {
+  ShareRows r;
+  for (std::size_t k = 0; k < w.active.size(); ++k) {
+    if (static_cast<int>(k) < w.rank) r.active_first += w.active[k];
+    if (static_cast<int>(k) < w.rank) r.excluded_first += w.excluded[k];
+    r.active_total += w.active[k];
+    r.total += w.active[k] + w.excluded[k];
+  }
+  r.excluded_first += r.active_total;
+  return r;
+}
+
+// Logical AND of `ok` over every rank (collective); the flag itself on one process.
+bool all_ranks_ok(bool ok) {
+#ifdef SWELL_PARALLEL_HDF5
+  int mine = ok ? 1 : 0, all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  return all == 1;
+#else
+  return ok;
+#endif
+}
+
+// Every rank writes its rows (`rows(root, dxpl)`) into the existing file `tmp`, opened through
+// MPI-IO with collective transfers. Returns what went wrong on this rank ("" if nothing).
+template <class Rows>
+std::string write_rows_shared(const std::string& tmp, Rows&& rows) {
+#ifdef SWELL_PARALLEL_HDF5
+  try {
+    Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+    if (H5Pset_fapl_mpio(fapl.get(), MPI_COMM_WORLD, MPI_INFO_NULL) < 0)
+      fail_h5(tmp, "", "cannot be set up for MPI-IO");
+    Handle f(H5Fopen(tmp.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
+    if (!f.valid()) fail_h5(tmp, "", "cannot be opened by every rank (MPI-IO)");
+    Handle dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
+    H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE);
+    rows(Loc{f.get(), tmp, "/"}, dxpl.get());
+    if (!f.close()) fail_h5(tmp, "", "cannot be closed after the ranks wrote their rows");
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
+#else
+  (void)rows;
+  return "HDF5 file '" + tmp + "': this build has no parallel HDF5 to write it from several ranks";
+#endif
+}
+
+// Writes an HDF5 file that every rank fills (`share`) crash-safely, as write_h5_atomically does
+// for one process: rank 0 writes `skeleton` (everything but the particle rows) into
+// path + ".tmp"; every rank writes its rows (`rows`, collective); rank 0 writes `finish` (the
+// marks that say the file is complete), syncs the file, runs before_rename, renames it over
+// `path` and runs `after`. Each of the three ends with an agreement, so no rank waits in a
+// collective another has left: when any rank failed, rank 0 removes the temporary file and
+// throws (its own message, or says which rank failed; that rank prints its own), the others
+// return false. Every rank returns or throws at the same point.
+template <class Skeleton, class Rows, class Finish, class Hook, class After>
+bool write_h5_shared(const std::string& path, const WriteShare& share, Skeleton&& skeleton,
+                     Rows&& rows, Finish&& finish, Hook&& before_rename, After&& after) {
+  const std::string tmp = path + ".tmp";
+  const bool root = share.rank == 0;
+  std::string err;
+  if (root) {
+    try {
+      Handle f(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+      if (!f.valid()) fail_h5(tmp, "", "cannot be created");
+      skeleton(Loc{f.get(), tmp, "/"});
+      if (!f.close()) fail_h5(tmp, "", "cannot be closed");
+    } catch (const std::exception& e) {
+      err = e.what();
+    }
+  }
+  if (!all_ranks_ok(err.empty())) {
+    if (!root) return false;
+    remove_quietly(tmp);
+    throw std::runtime_error(err);
+  }
+  err = write_rows_shared(tmp, rows);
+  if (!all_ranks_ok(err.empty())) {
+    if (!root) {
+      if (!err.empty()) std::fprintf(stderr, "swell (rank %d): %s\n", share.rank, err.c_str());
+      return false;
+    }
+    remove_quietly(tmp);
+    throw std::runtime_error(err.empty() ? "HDF5 file '" + tmp +
+                                               "': another rank could not write its particles "
+                                               "(that rank's message is above)"
+                                         : err);
+  }
+  if (root) {
+    try {
+      {
+        Handle f(H5Fopen(tmp.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+        if (!f.valid()) fail_h5(tmp, "", "cannot be opened to complete it");
+        finish(Loc{f.get(), tmp, "/"});
+        if (!f.close()) fail_h5(tmp, "", "cannot be closed");
+      }
+      sync_path(tmp, false);
+      before_rename();
+      rename_or_fail(tmp, path);
+      const fs::path dir = fs::path(path).parent_path();
+      sync_path(dir.empty() ? "." : dir.string(), true);
+      after();
+    } catch (const std::exception& e) {
+      err = e.what();
+      remove_quietly(tmp);
+    }
+  }
+  if (!all_ranks_ok(err.empty())) {
+    if (!root) return false;
+    throw std::runtime_error(err);
+  }
+  return true;
+}
+
 // "snapshot-data:3" -> {1, 3}; "snapshot-index:2" -> {2, 2}; anything else: no hook.
 std::pair<int, long> kill_hook_from_env() {
   const char* v = std::getenv("SWELL_TEST_KILL_AT");
@@ -211,6 +334,14 @@ std::pair<int, long> kill_hook_from_env() {
 }
 
 }  // namespace
+
+bool parallel_hdf5() {
+#ifdef SWELL_PARALLEL_HDF5
+  return true;
+#else
+  return false;
+#endif
+}
 
 // ---- Run file -----------------------------------------------------------------------------
 
@@ -320,49 +451,131 @@ void Hdf5RunFile::write_index() const {
       });
 }
 
+std::string Hdf5RunFile::snapshot_path(const std::string& path, long step) {
+  const fs::path p(path);
+  return (p.parent_path() / "snapshots" / (p.stem().string() + "_" + snapshot_name(step) + ".h5"))
+      .string();
+}
+
+namespace {
+
+// The datasets of a snapshot: the fields of the table that have a snapshot name, then the
+// pressure. fn(name, array) in that order, on every rank alike.
+template <int D, class Fn>
+void snapshot_arrays(const ParticleSet<D>& ps, const std::vector<double>& pressure, Fn&& fn) {
+  ps.for_each_field([&](const FieldInfo& f, const auto& a) {
+    if (f.snapshot && ps.enabled(f)) fn(f.snapshot, a);
+  });
+  fn("p", pressure);
+}
+
+// A snapshot file's metadata and group /particles/<name>; with `rows` (one process) its
+// datasets written, else (several ranks) created for `n` rows, storage allocated, to be filled
+// by snapshot_rows.
+template <int D>
+void snapshot_skeleton(const Loc& root, const RunMetadata& meta, const std::string& name,
+                       const ParticleSet<D>& ps, const std::vector<double>& pressure, std::size_t n,
+                       bool rows) {
+  write_metadata(root, meta);
+  Handle pg = create_group(root, "particles");
+  const Loc particles = root.at(pg.get(), "particles");
+  Handle g = create_group(particles, name);
+  const Loc snap = particles.at(g.get(), name);
+  snapshot_arrays(ps, pressure, [&](const char* field, const auto& a) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if (rows)
+      write_column(snap, field, a, n, true);
+    else
+      create_column<T>(snap, field, n, true, true);
+    write_units(snap, field, snapshot_units(field, D));
+  });
+}
+
+// Attributes last: a group without them was cut short and is skipped by readers.
+void snapshot_finish(const Loc& root, const std::string& name, long step, double time) {
+  const std::string group = "/particles/" + name;
+  Handle g(H5Gopen2(root.id, group.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) fail_h5(root.file, "group '" + group + "'", "cannot be opened");
+  const Loc snap{g.get(), root.file, group};
+  write_attr(snap, "time", time);
+  write_attr<std::int64_t>(snap, "step", step);
+}
+
+// This rank's rows of snapshot `name` (collective).
+template <int D>
+void snapshot_rows(const Loc& root, hid_t dxpl, const std::string& name, const ParticleSet<D>& ps,
+                   const std::vector<double>& pressure, const WriteShare& share) {
+  const std::string group = "/particles/" + name;
+  Handle g(H5Gopen2(root.id, group.c_str(), H5P_DEFAULT), H5Gclose);
+  if (!g.valid()) fail_h5(root.file, "group '" + group + "'", "cannot be opened");
+  const Loc snap{g.get(), root.file, group};
+  const std::uint64_t first = share_rows(share).active_first;
+  snapshot_arrays(ps, pressure, [&](const char* field, const auto& a) {
+    write_rows(snap, field, a, 0, ps.size(), first, dxpl);
+  });
+}
+
+void check_pressure(const std::string& file, const std::string& name, std::size_t have,
+                    std::size_t n) {
+  if (have < n)
+    fail(file, "group '/particles/" + name + "'",
+         "pressure has " + std::to_string(have) + " values for " + std::to_string(n) +
+             " active particles");
+}
+
+}  // namespace
+
 template <int D>
 void Hdf5RunFile::write_snapshot(long step, double time, const ParticleSet<D>& ps,
-                                 const std::vector<double>& pressure) {
+                                 const std::vector<double>& pressure, const WriteShare* share) {
   QuietErrors quiet;
-  const std::size_t n = ps.size();
   const std::string name = snapshot_name(step);
-  const std::string file = (fs::path(path_).parent_path() / snapshot_file(step)).string();
-  if (pressure.size() < n) {
-    fail(file, "group '/particles/" + name + "'",
-         "pressure has " + std::to_string(pressure.size()) + " values for " + std::to_string(n) +
-             " active particles");
-  }
+  const std::string file = snapshot_path(path_, step);
+  check_pressure(file, name, pressure.size(), ps.size());
   ++writes_;
+  auto hook = [&] {
+    if (kill_point_ == 1 && writes_ == kill_at_) std::raise(SIGKILL);
+  };
+  auto add_entry = [&] {
+    auto it = std::find_if(entries_.begin(), entries_.end(),
+                           [&](const Entry& e) { return e.step >= step; });
+    if (it != entries_.end() && it->step == step)
+      it->time = time;
+    else
+      entries_.insert(it, {step, time});
+    write_index();
+  };
+  if (share) {
+    write_h5_shared(
+        file, *share,
+        [&](const Loc& root) {
+          snapshot_skeleton(root, meta_, name, ps, pressure, share_rows(*share).active_total,
+                            false);
+        },
+        [&](const Loc& root, hid_t dxpl) { snapshot_rows(root, dxpl, name, ps, pressure, *share); },
+        [&](const Loc& root) { snapshot_finish(root, name, step, time); }, hook, add_entry);
+    return;
+  }
   write_h5_atomically(
       file,
       [&](const Loc& root) {
-        write_metadata(root, meta_);
-        Handle pg = create_group(root, "particles");
-        const Loc particles = root.at(pg.get(), "particles");
-        Handle g = create_group(particles, name);
-        const Loc snap = particles.at(g.get(), name);
-        // The fields of the table that have a snapshot name, plus the pressure.
-        ps.for_each_field([&](const FieldInfo& f, const auto& a) {
-          if (!f.snapshot || !ps.enabled(f)) return;
-          write_column(snap, f.snapshot, a, n, true);
-          write_units(snap, f.snapshot, snapshot_units(f.snapshot, D));
-        });
-        write_column(snap, "p", pressure, n, true);
-        write_units(snap, "p", snapshot_units("p", D));
-        // Attributes last: a group without them was cut short and is skipped by readers.
-        write_attr(snap, "time", time);
-        write_attr<std::int64_t>(snap, "step", step);
+        snapshot_skeleton(root, meta_, name, ps, pressure, ps.size(), true);
+        snapshot_finish(root, name, step, time);
       },
-      [&] {
-        if (kill_point_ == 1 && writes_ == kill_at_) std::raise(SIGKILL);
-      });
-  auto it = std::find_if(entries_.begin(), entries_.end(),
-                         [&](const Entry& e) { return e.step >= step; });
-  if (it != entries_.end() && it->step == step)
-    it->time = time;
-  else
-    entries_.insert(it, {step, time});
-  write_index();
+      hook);
+  add_entry();
+}
+
+template <int D>
+bool write_snapshot_rows(const std::string& run_file, long step, const ParticleSet<D>& ps,
+                         const std::vector<double>& pressure, const WriteShare& share) {
+  QuietErrors quiet;
+  const std::string name = snapshot_name(step);
+  const std::string file = Hdf5RunFile::snapshot_path(run_file, step);
+  return write_h5_shared(
+      file, share, [](const Loc&) {},
+      [&](const Loc& root, hid_t dxpl) { snapshot_rows(root, dxpl, name, ps, pressure, share); },
+      [](const Loc&) {}, [] {}, [] {});
 }
 
 RunMetadata read_metadata(const std::string& path) {
@@ -416,63 +629,124 @@ SnapshotData<D> read_snapshot(const std::string& path, const SnapshotInfo& info)
 
 // ---- Checkpoints --------------------------------------------------------------------------
 
+namespace {
+
+// A checkpoint but its particle rows (several ranks: datasets of `total` rows, allocated) or
+// with them (one process).
 template <int D>
-void write_checkpoint(const std::string& path, const ParticleSet<D>& ps,
-                      const SimulationClock& clock, const std::map<std::string, double>& schedule,
-                      const CaseTag& tag) {
-  QuietErrors quiet;
+void checkpoint_skeleton(const Loc& root, const ParticleSet<D>& ps, const SimulationClock& clock,
+                         const std::map<std::string, double>& schedule, const CaseTag& tag,
+                         std::uint64_t n_active, std::uint64_t total, bool rows) {
+  write_attr<std::int32_t>(root, "dim", D);
+  write_attr<std::uint64_t>(root, "n_active", n_active);
+  write_attr<std::uint64_t>(root, "total", total);
+  write_field(root, "case_identity", tag.identity);
+  write_field(root, "case_name", tag.name);
+  write_field(root, "case_file", tag.file);
+  {
+    Handle g = create_group(root, "particles");
+    const Loc p = root.at(g.get(), "particles");
+    checkpoint_arrays(ps, [&](const char* name, const auto& v) {
+      using T = typename std::decay_t<decltype(v)>::value_type;
+      if (rows)
+        write_column(p, name, v, total, false);
+      else
+        create_column<T>(p, name, total, false, true);
+    });
+  }
+  {
+    Handle g = create_group(root, "clock");
+    const Loc c = root.at(g.get(), "clock");
+    clock_fields(clock, [&](const char* name, const auto& v) { write_field(c, name, v); });
+  }
+  {
+    Handle g = create_group(root, "schedule");
+    const Loc s = root.at(g.get(), "schedule");
+    std::vector<std::string> names;
+    std::vector<double> values;
+    for (const auto& [name, value] : schedule) {
+      names.push_back(name);
+      values.push_back(value);
+    }
+    write_strings(s, "names", names, false, true);
+    write_column(s, "values", values, values.size(), false);
+  }
+}
+
+// Last: a file without this mark was cut short and is never restarted from.
+void checkpoint_finish(const Loc& root) {
+  write_attr<std::int32_t>(root, "complete", 1);
+}
+
+// This rank's rows of a checkpoint (collective): its active particles, then its excluded ones.
+template <int D>
+void checkpoint_rows(const Loc& root, hid_t dxpl, const ParticleSet<D>& ps,
+                     const WriteShare& share) {
+  Handle g = open_group(root, "particles");
+  const Loc p = root.at(g.get(), "particles");
+  const ShareRows r = share_rows(share);
+  checkpoint_arrays(ps, [&](const char* name, const auto& v) {
+    write_rows(p, name, v, 0, ps.n_active, r.active_first, dxpl);
+    write_rows(p, name, v, ps.n_active, ps.total() - ps.n_active, r.excluded_first, dxpl);
+  });
+}
+
+template <int D>
+void check_consistent(const std::string& path, const ParticleSet<D>& ps) {
   const std::size_t total = ps.total();
   bool consistent = ps.n_active <= total;
   checkpoint_arrays(ps, [&](const char*, const auto& v) { consistent &= v.size() == total; });
   if (!consistent) fail(path, "", "cannot save a particle set whose arrays differ in size");
+}
 
+}  // namespace
+
+template <int D>
+void write_checkpoint(const std::string& path, const ParticleSet<D>& ps,
+                      const SimulationClock& clock, const std::map<std::string, double>& schedule,
+                      const CaseTag& tag, const WriteShare* share) {
+  QuietErrors quiet;
+  check_consistent(path, ps);
   const std::string prev = path + ".prev";
+  // Keep the previous checkpoint as .prev through a hard link, so `path` names a complete
+  // checkpoint at every moment; the rename then replaces it atomically. An incomplete file at
+  // `path` (not written here) is not worth keeping.
+  auto keep_previous = [&] {
+    if (file_exists(path) && checkpoint_is_complete(path)) {
+      std::error_code ec;
+      fs::remove(prev, ec);
+      fs::create_hard_link(path, prev, ec);
+      if (ec) rename_or_fail(path, prev);  // file system without hard links
+    }
+  };
+  if (share) {
+    const ShareRows r = share_rows(*share);
+    write_h5_shared(
+        path, *share,
+        [&](const Loc& root) {
+          checkpoint_skeleton(root, ps, clock, schedule, tag, r.active_total, r.total, false);
+        },
+        [&](const Loc& root, hid_t dxpl) { checkpoint_rows(root, dxpl, ps, *share); },
+        checkpoint_finish, keep_previous, [] {});
+    return;
+  }
   write_h5_atomically(
       path,
       [&](const Loc& root) {
-        write_attr<std::int32_t>(root, "dim", D);
-        write_attr<std::uint64_t>(root, "n_active", ps.n_active);
-        write_attr<std::uint64_t>(root, "total", total);
-        write_field(root, "case_identity", tag.identity);
-        write_field(root, "case_name", tag.name);
-        write_field(root, "case_file", tag.file);
-        {
-          Handle g = create_group(root, "particles");
-          const Loc p = root.at(g.get(), "particles");
-          checkpoint_arrays(
-              ps, [&](const char* name, const auto& v) { write_column(p, name, v, total, false); });
-        }
-        {
-          Handle g = create_group(root, "clock");
-          const Loc c = root.at(g.get(), "clock");
-          clock_fields(clock, [&](const char* name, const auto& v) { write_field(c, name, v); });
-        }
-        {
-          Handle g = create_group(root, "schedule");
-          const Loc s = root.at(g.get(), "schedule");
-          std::vector<std::string> names;
-          std::vector<double> values;
-          for (const auto& [name, value] : schedule) {
-            names.push_back(name);
-            values.push_back(value);
-          }
-          write_strings(s, "names", names, false, true);
-          write_column(s, "values", values, values.size(), false);
-        }
-        // Last: a file without this mark was cut short and is never restarted from.
-        write_attr<std::int32_t>(root, "complete", 1);
+        checkpoint_skeleton(root, ps, clock, schedule, tag, ps.n_active, ps.total(), true);
+        checkpoint_finish(root);
       },
-      [&] {
-        // Keep the previous checkpoint as .prev through a hard link, so `path` names a
-        // complete checkpoint at every moment; the rename then replaces it atomically. An
-        // incomplete file at `path` (not written here) is not worth keeping.
-        if (file_exists(path) && checkpoint_is_complete(path)) {
-          std::error_code ec;
-          fs::remove(prev, ec);
-          fs::create_hard_link(path, prev, ec);
-          if (ec) rename_or_fail(path, prev);  // file system without hard links
-        }
-      });
+      keep_previous);
+}
+
+template <int D>
+bool write_checkpoint_rows(const std::string& path, const ParticleSet<D>& ps,
+                           const WriteShare& share) {
+  QuietErrors quiet;
+  return write_h5_shared(
+      path, share, [](const Loc&) {},
+      [&](const Loc& root, hid_t dxpl) { checkpoint_rows(root, dxpl, ps, share); },
+      [](const Loc&) {}, [] {}, [] {});
 }
 
 template <int D>
@@ -575,15 +849,25 @@ void hdf5_no_atexit() {
 // ---- Explicit instantiations --------------------------------------------------------------
 
 template void Hdf5RunFile::write_snapshot<2>(long, double, const ParticleSet<2>&,
-                                             const std::vector<double>&);
+                                             const std::vector<double>&, const WriteShare*);
 template void Hdf5RunFile::write_snapshot<3>(long, double, const ParticleSet<3>&,
-                                             const std::vector<double>&);
+                                             const std::vector<double>&, const WriteShare*);
+template bool write_snapshot_rows<2>(const std::string&, long, const ParticleSet<2>&,
+                                     const std::vector<double>&, const WriteShare&);
+template bool write_snapshot_rows<3>(const std::string&, long, const ParticleSet<3>&,
+                                     const std::vector<double>&, const WriteShare&);
 template SnapshotData<2> read_snapshot<2>(const std::string&, const SnapshotInfo&);
 template SnapshotData<3> read_snapshot<3>(const std::string&, const SnapshotInfo&);
 template void write_checkpoint<2>(const std::string&, const ParticleSet<2>&, const SimulationClock&,
-                                  const std::map<std::string, double>&, const CaseTag&);
+                                  const std::map<std::string, double>&, const CaseTag&,
+                                  const WriteShare*);
 template void write_checkpoint<3>(const std::string&, const ParticleSet<3>&, const SimulationClock&,
-                                  const std::map<std::string, double>&, const CaseTag&);
+                                  const std::map<std::string, double>&, const CaseTag&,
+                                  const WriteShare*);
+template bool write_checkpoint_rows<2>(const std::string&, const ParticleSet<2>&,
+                                       const WriteShare&);
+template bool write_checkpoint_rows<3>(const std::string&, const ParticleSet<3>&,
+                                       const WriteShare&);
 template Checkpoint<2> read_checkpoint<2>(const std::string&);
 template Checkpoint<3> read_checkpoint<3>(const std::string&);
 

@@ -37,6 +37,13 @@
 //   /schedule       datasets names (strings) and values (double), the runner's timers and
 //                   the state the step hooks save (bc/ modules; names "hook.<module>.<key>")
 //
+// A decomposed run (several MPI ranks, issue #16) in a build with parallel HDF5 writes these
+// same files from every rank at once (WriteShare): rank 0 writes everything but the particle
+// rows, every rank then writes its own rows through MPI-IO (collective), rank 0 writes the
+// marks that come last and renames. The file is the one the particles gathered to one process
+// would give: the active particles of rank 0, 1, ... in each rank's order, then (checkpoints)
+// their excluded particles in the same rank order.
+//
 // Every failure is a std::runtime_error naming the file and the object involved.
 #pragma once
 
@@ -65,6 +72,18 @@ struct RunMetadata {
   Provenance provenance;
 };
 
+// This rank's part in a file that every rank of a decomposed run writes together: its rank and
+// every rank's particle counts, in rank order.
+struct WriteShare {
+  int rank = 0;
+  std::vector<std::uint64_t> active, excluded;  // per rank
+};
+
+// Whether this build can write a file from several ranks at once (an MPI build linked with
+// parallel HDF5, libhdf5-openmpi-dev). Without it a decomposed run gathers its particles to
+// rank 0 for its output.
+bool parallel_hdf5();
+
 // The run file of a run being written: its metadata and the snapshots written so far. Each
 // write_snapshot writes one snapshot file and then the index (see above); nothing stays open
 // between calls.
@@ -83,9 +102,14 @@ class Hdf5RunFile {
 
   // Writes the active particles [0, ps.size()) as snapshot `step`, then the index. `pressure`
   // must hold at least ps.size() values. A snapshot of the same step is replaced.
+  // With `share` (rank 0 of a decomposed run): `ps` and `pressure` are rank 0's own particles
+  // and every rank calls this at once, the others through write_snapshot_rows.
   template <int D>
   void write_snapshot(long step, double time, const ParticleSet<D>& ps,
-                      const std::vector<double>& pressure);
+                      const std::vector<double>& pressure, const WriteShare* share = nullptr);
+
+  // The snapshot file of step `step` of the run file at `path`.
+  static std::string snapshot_path(const std::string& path, long step);
 
   const std::string& path() const { return path_; }
   std::size_t snapshot_count() const { return entries_.size(); }
@@ -109,6 +133,13 @@ class Hdf5RunFile {
   int kill_point_ = 0;  // 0 none, 1 snapshot-data, 2 snapshot-index
   long kill_at_ = 0, writes_ = 0;
 };
+
+// Ranks 1..N-1 of a decomposed run: their rows of the snapshot that rank 0 writes with
+// Hdf5RunFile::write_snapshot(..., share) at the same time (collective). Returns false when a
+// rank failed (rank 0 then throws and says why).
+template <int D>
+bool write_snapshot_rows(const std::string& run_file, long step, const ParticleSet<D>& ps,
+                         const std::vector<double>& pressure, const WriteShare& share);
 
 // The folder (next to the run file) that holds its snapshot files.
 std::string snapshot_folder(const std::string& run_file);
@@ -154,10 +185,17 @@ struct Checkpoint {
 // Writes path + ".tmp", syncs it to disk, moves the previous checkpoint (if complete) to
 // path + ".prev" and renames the new one over `path`. A crash at any point leaves at least
 // one complete checkpoint among `path` and path + ".prev".
+// With `share` (rank 0 of a decomposed run): `ps` is rank 0's own storage, and every other
+// rank calls write_checkpoint_rows at the same time (collective).
 template <int D>
 void write_checkpoint(const std::string& path, const ParticleSet<D>& ps,
                       const SimulationClock& clock, const std::map<std::string, double>& schedule,
-                      const CaseTag& tag = {});
+                      const CaseTag& tag = {}, const WriteShare* share = nullptr);
+
+// Ranks 1..N-1: their rows of the checkpoint rank 0 writes. False when a rank failed.
+template <int D>
+bool write_checkpoint_rows(const std::string& path, const ParticleSet<D>& ps,
+                           const WriteShare& share);
 
 // Throws if the file is missing, unreadable, incomplete or holds another dimension.
 template <int D>

@@ -282,11 +282,12 @@ struct Column<Eigen::Matrix<S, R, 1, O, MR, MC>> {
   static constexpr int cols = R;
 };
 
-// Writes the first `rows` entries of `v`. Compression is lossless (shuffle + deflate level 1)
-// and only used for large snapshot arrays.
+// Creates dataset `name` of `rows` rows for a T per row, compressed (lossless: shuffle +
+// deflate level 1) when asked and large. `early`: its storage is allocated now (a file that
+// several ranks fill at once, parallel HDF5).
 template <class T>
-void write_column(const Loc& g, const char* name, const std::vector<T>& v, std::size_t rows,
-                  bool compress) {
+Handle create_column(const Loc& g, const char* name, std::size_t rows, bool compress,
+                     bool early = false) {
   using S = typename Column<T>::Scalar;
   constexpr int cols = Column<T>::cols;
   const hsize_t width = cols > 0 ? cols : 1;
@@ -302,13 +303,52 @@ void write_column(const Loc& g, const char* name, const std::vector<T>& v, std::
     H5Pset_shuffle(dcpl.get());
     H5Pset_deflate(dcpl.get(), 1);
   }
+  if (early) H5Pset_alloc_time(dcpl.get(), H5D_ALLOC_TIME_EARLY);
   Handle ds(
       H5Dcreate2(g.id, name, H5Types<S>::file(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
       H5Dclose);
   if (!ds.valid()) fail_h5(g.file, g.dataset(name), "cannot be created");
+  return ds;
+}
+
+// Writes the first `rows` entries of `v` as a new dataset (see create_column).
+template <class T>
+void write_column(const Loc& g, const char* name, const std::vector<T>& v, std::size_t rows,
+                  bool compress) {
+  using S = typename Column<T>::Scalar;
+  Handle ds = create_column<T>(g, name, rows, compress);
   // An empty dataset is complete as created; HDF5 rejects a write from a null buffer.
   if (rows > 0 && H5Dwrite(ds.get(), H5Types<S>::mem(), H5S_ALL, H5S_ALL, H5P_DEFAULT,
                            reinterpret_cast<const S*>(v.data())) < 0)
+    fail_h5(g.file, g.dataset(name), "cannot be written");
+}
+
+// Writes v[from, from + rows) into rows [first, first + rows) of the existing dataset `name`
+// through the transfer list `dxpl` (collective in a file several ranks write: every rank calls
+// this for the same datasets in the same order, rows = 0 included).
+template <class T>
+void write_rows(const Loc& g, const char* name, const std::vector<T>& v, std::size_t from,
+                std::size_t rows, std::uint64_t first, hid_t dxpl) {
+  using S = typename Column<T>::Scalar;
+  constexpr int cols = Column<T>::cols;
+  const hsize_t width = cols > 0 ? cols : 1;
+  Handle ds(H5Dopen2(g.id, name, H5P_DEFAULT), H5Dclose);
+  if (!ds.valid()) fail_h5(g.file, g.dataset(name), "is missing or cannot be opened");
+  Handle fspace(H5Dget_space(ds.get()), H5Sclose);
+  const hsize_t start[2] = {first, 0}, count[2] = {rows, width};
+  const int rank = cols > 0 ? 2 : 1;
+  Handle mspace(H5Screate_simple(rank, count, nullptr), H5Sclose);
+  if (rows == 0) {
+    H5Sselect_none(fspace.get());
+    H5Sselect_none(mspace.get());
+  } else if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) <
+             0) {
+    fail_h5(g.file, g.dataset(name),
+            "rows " + std::to_string(first) + "+" + std::to_string(rows) + " cannot be selected");
+  }
+  static const S none{};  // a rank with no rows still takes part, from a valid address
+  const S* data = rows > 0 ? reinterpret_cast<const S*>(v.data() + from) : &none;
+  if (H5Dwrite(ds.get(), H5Types<S>::mem(), mspace.get(), fspace.get(), dxpl, data) < 0)
     fail_h5(g.file, g.dataset(name), "cannot be written");
 }
 

@@ -29,11 +29,21 @@ bool is_top_level_run_file(std::string_view f) {
   return ends_with_any(f, {".h5", ".h5.tmp", ".h5.prev", ".h5.corrupt", ".pvd", ".pvd.tmp"});
 }
 
-// The number NNNN of vtk/<name>_NNNN.vtp, <name>_fluid_NNNN.vtp or <name>_boundary_NNNN.vtp;
+// The number NNNN of vtk/<name>_NNNN.vtp, <name>_fluid_NNNN.vtp or <name>_boundary_NNNN.vtp,
+// and of a decomposed run's <name>..._NNNN.pvtp and its pieces <name>..._NNNN_p<rank>.vtp;
 // -1 for any other file name.
 long vtk_index(std::string_view f, const std::string& name) {
-  if (!f.ends_with(".vtp")) return -1;
-  f.remove_suffix(4);
+  if (f.ends_with(".pvtp")) {
+    f.remove_suffix(5);
+  } else if (f.ends_with(".vtp")) {
+    f.remove_suffix(4);
+    const auto p = f.rfind("_p");
+    if (p != std::string_view::npos && p + 2 < f.size() &&
+        f.substr(p + 2).find_first_not_of("0123456789") == std::string_view::npos)
+      f = f.substr(0, p);  // a piece
+  } else {
+    return -1;
+  }
   for (std::string_view head :
        {std::string_view("_fluid_"), std::string_view("_boundary_"), std::string_view("_")}) {
     const std::string prefix = name + std::string(head);
@@ -120,6 +130,7 @@ std::vector<std::string> run_files(const std::string& dir) {
     }
   };
   scan("vtk", ".vtp");
+  scan("vtk", ".pvtp");
   scan("snapshots", ".h5");
   std::sort(out.begin(), out.end());
   return out;
@@ -142,7 +153,8 @@ void remove_vtk_snapshots_from(const std::string& dir, const std::string& name, 
   std::vector<fs::path> stale;
   for (const auto& e : fs::directory_iterator(d, ec)) {
     const std::string f = e.path().filename().string();
-    if (vtk_index(f, name) >= first || f.ends_with(".vtp.tmp")) stale.push_back(e.path());
+    if (vtk_index(f, name) >= first || f.ends_with(".vtp.tmp") || f.ends_with(".pvtp.tmp"))
+      stale.push_back(e.path());
   }
   for (const auto& p : stale) {
     fs::remove(p, ec);

@@ -168,6 +168,38 @@ void write_vtp(const std::string& path, const ParticleSet<D>& ps,
   if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
 }
 
+std::string vtk_piece_name(const std::string& vtp, int rank) {
+  const std::string stem = vtp.ends_with(".vtp") ? vtp.substr(0, vtp.size() - 4) : vtp;
+  return stem + "_p" + std::to_string(rank) + ".vtp";
+}
+
+void write_pvtp(const std::string& path, const std::vector<std::string>& pieces, bool normals,
+                bool body_names) {
+  // The arrays write_vtp writes, in its order (the pieces' types: VTK XML type names).
+  std::ostringstream s;
+  s << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"PPolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+       "header_type=\"UInt64\">\n"
+    << "  <PPolyData GhostLevel=\"0\">\n"
+    << "    <PPointData>\n"
+    << "      <PDataArray type=\"Float32\" Name=\"velocity\" NumberOfComponents=\"3\"/>\n"
+    << "      <PDataArray type=\"Float32\" Name=\"density\"/>\n"
+    << "      <PDataArray type=\"Float32\" Name=\"pressure\"/>\n"
+    << "      <PDataArray type=\"UInt8\" Name=\"type\"/>\n"
+    << "      <PDataArray type=\"UInt16\" Name=\"body\"/>\n"
+    << "      <PDataArray type=\"UInt32\" Name=\"id\"/>\n";
+  if (normals)
+    s << "      <PDataArray type=\"Float32\" Name=\"wall_normal\" NumberOfComponents=\"3\"/>\n";
+  if (body_names) s << "      <PDataArray type=\"String\" Name=\"body_name\"/>\n";
+  s << "    </PPointData>\n"
+    << "    <PPoints>\n"
+    << "      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n"
+    << "    </PPoints>\n";
+  for (const auto& p : pieces) s << "    <Piece Source=\"" << p << "\"/>\n";
+  s << "  </PPolyData>\n</VTKFile>\n";
+  write_file_atomically(path, s.str());
+}
+
 void PvdSeries::resume(double t_keep) {
   entries_.clear();
   std::ifstream in(path_);

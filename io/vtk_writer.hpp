@@ -26,6 +26,17 @@ void write_vtp(const std::string& path, const ParticleSet<D>& ps,
                const std::vector<std::string>* body_names = nullptr,
                double time = std::numeric_limits<double>::quiet_NaN());
 
+// The name of rank `rank`'s piece of the snapshot `vtp` (".../<name>_NNNN.vtp" ->
+// ".../<name>_NNNN_p<rank>.vtp") in a decomposed run.
+std::string vtk_piece_name(const std::string& vtp, int rank);
+
+// A decomposed run's snapshot: the .pvtp file at `path` that ParaView opens as one dataset made
+// of the pieces `pieces` (file names relative to its folder), each written by write_vtp on its
+// rank; `normals` and `body_names` say whether write_vtp wrote those arrays. Written through a
+// temporary file renamed into place.
+void write_pvtp(const std::string& path, const std::vector<std::string>& pieces, bool normals,
+                bool body_names);
+
 // A .pvd collection, rewritten (atomically) each time a snapshot is added.
 class PvdSeries {
  public:

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <sstream>
@@ -54,6 +56,20 @@ double surge_front(const ParticleSet<D>& ps, const Vec<D>& up, double floor, dou
   return front;
 }
 
+// How the whole-run checks combine what each process saw. One process: as it is. A decomposed
+// run passes a reducer over its ranks with the same calls (apps/run_view.hpp), and every rank
+// then gets the same answers.
+struct SingleProcess {
+  double sum(double x) const { return x; }
+  double min(double x) const { return x; }
+  double max(double x) const { return x; }
+  // The largest `value` over the processes; `payload` becomes that of the process holding it.
+  template <std::size_t K>
+  double max_with(double value, std::array<double, K>& /*payload*/) const {
+    return value;
+  }
+};
+
 // When a run counts as blown up (case file `watchdog:`, README "Watchdog"). Fractions are of
 // the initial fluid mass; densities are factors of rho0; the penetration depth is in dp.
 struct WatchdogLimits {
@@ -76,9 +92,11 @@ class Watchdog {
   // `floor`: the lowest initial fluid level along "up" (CaseSetup::floor): water starting below
   // every wall is not a leak. The initial fluid mass counts excluded particles too (restart).
   // `sim`: the Simulation, or anything with its particles(), params(), time(), steps(),
-  // excluded(), excluded_faces() and worst_density_exclusion() (apps/run_view.hpp).
-  template <class Sim>
-  Watchdog(const WatchdogLimits& limits, const Sim& sim, double floor) : lim_(limits) {
+  // excluded(), excluded_faces() and worst_density_exclusion() (apps/run_view.hpp). `red`
+  // combines the processes of a decomposed run (each passes its own particles).
+  template <class Sim, class Reduce = SingleProcess>
+  Watchdog(const WatchdogLimits& limits, const Sim& sim, double floor, const Reduce& red = {})
+      : lim_(limits) {
     const ParticleSet<D>& ps = sim.particles();
     const Vec<D> g = sim.params().gravity.template head<D>();
     for (int d = 0; d < D; ++d)
@@ -97,6 +115,9 @@ class Watchdog {
         hi_ = hi_.cwiseMax(ps.pos[i]);
       }
     }
+    mass0_ = red.sum(mass0_);
+    fluid0_ = static_cast<std::size_t>(red.sum(static_cast<double>(fluid0_)));
+    for (int d = 0; d < D; ++d) lo_[d] = red.min(lo_[d]), hi_[d] = red.max(hi_[d]);
     bottom_ = std::min(sign_ > 0.0 ? lo_[up_] : -hi_[up_], floor) - limits.penetration_depth * dp_;
     walls_ = std::isfinite(lo_[up_]);
   }
@@ -111,8 +132,8 @@ class Watchdog {
 
   // Returns true once, when the excluded fluid mass first passes warn_excluded_fraction; the
   // warning text is then in warning(). Throws InstabilityError when a limit is passed.
-  template <class Sim>
-  bool check(const Sim& sim) {
+  template <class Sim, class Reduce = SingleProcess>
+  bool check(const Sim& sim, const Reduce& red = {}) {
     const ParticleSet<D>& ps = sim.particles();
     double mass = 0.0, wall_rho = 0.0, deepest = 0.0;
     std::size_t wall_i = ps.size(), deep_i = ps.size(), penetrated = 0;
@@ -132,17 +153,37 @@ class Watchdog {
       ++penetrated;
       if (depth > deepest) deepest = depth, deep_i = i;
     }
+    // The densest wall particle and the deepest fluid one (id, body, position) of the run.
+    std::array<double, D + 2> wall{}, deep{};
+    auto describe = [&](std::size_t i, std::array<double, D + 2>& out) {
+      if (i >= ps.size()) return;
+      out[0] = ps.id[i];
+      out[1] = ps.body[i];
+      for (int d = 0; d < D; ++d) out[static_cast<std::size_t>(2 + d)] = ps.pos[i][d];
+    };
+    describe(wall_i, wall);
+    describe(deep_i, deep);
+    mass = red.sum(mass);
+    penetrated = static_cast<std::size_t>(red.sum(static_cast<double>(penetrated)));
+    wall_rho = red.max_with(wall_rho, wall);
+    deepest = red.max_with(deepest, deep);
+    auto pos_of = [](const std::array<double, D + 2>& a) {
+      Vec<D> x;
+      for (int d = 0; d < D; ++d) x[d] = a[static_cast<std::size_t>(2 + d)];
+      return x;
+    };
     excluded_ = mass0_ > 0.0 ? std::max(0.0, 1.0 - mass / mass0_) : 0.0;
     const double t = sim.time();
     const long step = sim.steps();
 
     if (excluded_ > lim_.max_excluded_fraction) throw_excluded(sim, t, step);
-    if (wall_i < ps.size() && wall_rho > lim_.max_density_factor * rho0_) {
+    // (wall_rho > 0: a wall particle was seen)
+    if (wall_rho > 0.0 && wall_rho > lim_.max_density_factor * rho0_) {
       std::ostringstream m;
-      const std::size_t body = ps.body[wall_i];
-      m << "wall particle " << ps.id[wall_i] << " (body "
+      const auto body = static_cast<std::size_t>(wall[1]);
+      m << "wall particle " << static_cast<std::uint64_t>(wall[0]) << " (body "
         << (body < body_names_.size() ? "'" + body_names_[body] + "'" : std::to_string(body))
-        << ") at " << where(ps.pos[wall_i]) << " has density " << wall_rho / rho0_
+        << ") at " << where(pos_of(wall)) << " has density " << wall_rho / rho0_
         << " rho0 at t = " << t << " s (step " << step
         << "), over watchdog.max_density = " << lim_.max_density_factor << " rho0 (pressure "
         << pressure_factor(wall_rho / rho0_)
@@ -166,8 +207,8 @@ class Watchdog {
         << " dp below the lowest wall particle (the floor), within the walls' horizontal extent, "
         << "at t = " << t << " s (step " << step
         << "), over watchdog.max_penetrated = " << lim_.max_penetrated_fraction
-        << " of the fluid; the deepest, particle " << ps.id[deep_i] << " at "
-        << where(ps.pos[deep_i]) << ", is " << deepest + lim_.penetration_depth * dp_
+        << " of the fluid; the deepest, particle " << static_cast<std::uint64_t>(deep[0]) << " at "
+        << where(pos_of(deep)) << ", is " << deepest + lim_.penetration_depth * dp_
         << " m below it. Likely cause: water went through the DBC floor (the flow is too fast "
         << "for the wall: more layers, a smaller time.cfl or dp, or a higher physics.coefsound)";
       throw InstabilityError(m.str());

@@ -8,7 +8,10 @@
 #   - a second run into a folder that holds one is refused by rank 0 with exit 2, the others
 #     leave with it (no rank waits forever), and the folder keeps its files unchanged;
 #   - the watchdog (rank 0's check) stops a run on 2 ranks with exit 3;
-#   - a command other than run on 2 ranks is refused with exit 2.
+#   - a command other than run on 2 ranks is refused with exit 2;
+#   - output from every rank (parallel HDF5 snapshots and checkpoints, VTK pieces + .pvtp)
+#     against rank 0 writing everything from a gather (SWELL_GATHER_OUTPUT=1): the same data,
+#     bit for bit, and the .pvtp files list every rank's piece.
 # Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
 #   - mDBC on 1 and 2 ranks (to 0.02 s);
 #   - the regular-wave flume with an absorbing piston (FLUME, 0.1 s, fixed dt) on 1 and 2
@@ -31,6 +34,7 @@ run() {  # ranks, then swell run arguments
 }
 run 1 -o r1 --set time.end=0.06 > r1.log
 run 2 -o r2 --set time.end=0.06 > r2.log
+SWELL_GATHER_OUTPUT=1 run 2 -o r2g --set time.end=0.06 > r2g.log
 run 2 -o half --set time.end=0.03 > half.log
 for n in 1 2 3; do
   cp -r half "re$n"
