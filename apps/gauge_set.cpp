@@ -120,6 +120,63 @@ std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
 }
 
 template <int D>
+GaugeRegion<D> gauge_region(const std::vector<GaugeSpec>& gauges, const GaugeContext& ctx) {
+  const SolverParams& p = ctx.params;
+  // The kernel support plus dp: the region may hold more than a gauge reads, never less.
+  const double s = kernel_support_factor(p.kernel) * p.h + p.dp;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  GaugeRegion<D> region;
+  auto around = [&](const Vec<D>& c, double r) {
+    region.boxes.emplace_back(c.array() - r, c.array() + r);
+  };
+  for (const auto& g : gauges) {
+    const Vec<D> at = g.at.template head<D>();
+    switch (g.kind) {
+      case GaugeSpec::Kind::Pressure: {
+        Vec<D> x = at;
+        const double offset = g.offset ? *g.offset : p.h;
+        if (g.normal) {  // as evaluate_gauge: a face's normal is normalised, a probe's is not
+          const Vec<D> n = g.normal->template head<D>();
+          x += offset * (g.size ? Vec<D>(n.normalized()) : n);
+        }
+        around(x, s + (g.size ? 0.5 * *g.size : 0.0));
+        break;
+      }
+      case GaugeSpec::Kind::Velocity:
+        around(at, s);
+        break;
+      case GaugeSpec::Kind::Height: {  // a vertical column around the line, at every height
+        Vec<D> lo = at.array() - s, hi = at.array() + s;
+        lo[ctx.up_axis] = -inf;
+        hi[ctx.up_axis] = inf;
+        region.boxes.emplace_back(lo, hi);
+        break;
+      }
+      case GaugeSpec::Kind::Runup: {
+        const Vec<D> a = g.from.template head<D>(), b = g.to.template head<D>();
+        const double r = 0.5 * p.dp + 2.0 * s;  // offset + support around the line, + support
+        region.boxes.emplace_back(a.cwiseMin(b).array() - r, a.cwiseMax(b).array() + r);
+        break;
+      }
+      case GaugeSpec::Kind::Front: {  // the band above the floor, everywhere along it
+        Vec<D> lo = Vec<D>::Constant(-inf), hi = Vec<D>::Constant(inf);
+        lo[ctx.up_axis] = ctx.floor - p.dp;
+        hi[ctx.up_axis] = ctx.floor + (g.band ? *g.band : 2.0 * p.h) + p.dp;
+        region.boxes.emplace_back(lo, hi);
+        break;
+      }
+      case GaugeSpec::Kind::Force: {
+        const auto it = ctx.body_ids.find(g.body);
+        if (it != ctx.body_ids.end())
+          region.bodies.push_back(static_cast<std::uint16_t>(it->second));
+        break;
+      }
+    }
+  }
+  return region;
+}
+
+template <int D>
 GaugeSet<D>::GaugeSet(const std::vector<GaugeSpec>& gauges, double default_every, GaugeContext ctx,
                       const std::string& out_dir, const std::string& case_name, double resume_after)
     : ctx_(std::move(ctx)) {
@@ -256,6 +313,8 @@ void GaugeSet<D>::load_schedule(const std::map<std::string, double>& schedule) {
   }
 }
 
+template GaugeRegion<2> gauge_region<2>(const std::vector<GaugeSpec>&, const GaugeContext&);
+template GaugeRegion<3> gauge_region<3>(const std::vector<GaugeSpec>&, const GaugeContext&);
 template class GaugeSet<2>;
 template class GaugeSet<3>;
 template std::vector<double> evaluate_gauge<2>(const GaugeSpec&, const GaugeContext&,

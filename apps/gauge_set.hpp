@@ -31,6 +31,29 @@ std::vector<double> evaluate_gauge(const GaugeSpec& g, const GaugeContext& ctx,
                                    const ParticleSet<D>& ps, const std::vector<double>& pressure,
                                    const std::vector<Vec<D>>& ace);
 
+// The particles the gauges may read: those inside one of `boxes` (any role) and the wall
+// particles of `bodies` (force gauges). Each gauge skips every other particle by its own test
+// (kernel support, measuring line, band), so evaluated on the particles in the region, kept in
+// their order, a gauge gives the same value bit for bit as on the whole set. A decomposed run
+// gathers only these to rank 0 for its gauges.
+template <int D>
+struct GaugeRegion {
+  std::vector<std::pair<Vec<D>, Vec<D>>> boxes;  // lo, hi (infinite where unbounded)
+  std::vector<std::uint16_t> bodies;
+  bool contains(const ParticleSet<D>& ps, std::size_t i) const {
+    for (const auto& [lo, hi] : boxes)
+      if ((ps.pos[i].array() >= lo.array()).all() && (ps.pos[i].array() <= hi.array()).all())
+        return true;
+    if (is_wall(ps.role[i]))
+      for (const auto b : bodies)
+        if (ps.body[i] == b) return true;
+    return false;
+  }
+};
+
+template <int D>
+GaugeRegion<D> gauge_region(const std::vector<GaugeSpec>& gauges, const GaugeContext& ctx);
+
 template <int D>
 class GaugeSet {
  public:

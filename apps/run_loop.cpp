@@ -69,11 +69,12 @@ struct Timer {
 // the same order. Bits below 256; the number of the snapshot written in the round from 256 up.
 enum RoundBits : unsigned {
   kRound = 1,        // something is due: the run's counts, then settle() at the end
-  kGather = 2,       // gauges (or snapshot/checkpoint without parallel HDF5) read a gather
+  kGather = 2,       // snapshot/checkpoint without parallel HDF5: the whole state gathered
   kWatch = 4,        // the watchdog checks
   kDiag = 8,         // a diagnostics row
   kSnapshot = 16,    // a snapshot (VTK, HDF5)
   kCheckpoint = 32,  // a checkpoint (after a watchdog check)
+  kGauges = 64,      // the gauges read the particles within their reach (gather_region)
 };
 struct Round {
   unsigned bits = 0;
@@ -83,6 +84,19 @@ Round announce(const parallel::Comm& comm, Round r) {
   if (comm.size() == 1) return r;
   const auto v = static_cast<std::uint64_t>(comm.max(r.bits + 256.0 * r.snapshot));
   return {static_cast<unsigned>(v & 255u), static_cast<int>(v >> 8)};
+}
+
+// What the gauges know of the run besides the particles (every rank builds the same).
+template <int D>
+GaugeContext gauge_context(const CaseSetup<D>& setup) {
+  GaugeContext c;
+  c.params = setup.params;
+  c.up_axis = D - 1;
+  c.floor = setup.floor;
+  c.line_top = setup.params.domain_max[D - 1];
+  for (std::size_t b = 0; b < setup.bodies.size(); ++b)
+    c.body_ids[setup.bodies[b].name] = static_cast<int>(b);
+  return c;
 }
 
 // The diagnostics row (steps, dt, fluid count, mass, kinetic energy, max speed, front) over
@@ -391,12 +405,17 @@ std::string decomposition_report(const Simulation<D>& sim, const parallel::Comm&
   return o.str();
 }
 
-// Whether the ranks write their own particles into snapshots and checkpoints (parallel HDF5),
-// else rank 0 writes them from a gather. SWELL_GATHER_OUTPUT=1 forces the gather (the tests
-// compare the two).
-bool use_shared_output(const parallel::Comm& comm) {
+// SWELL_GATHER_OUTPUT=1: every output of a decomposed run from the whole state gathered to
+// rank 0, as before parallel output (the tests compare the two, bit for bit).
+bool gather_everything() {
   const char* g = std::getenv("SWELL_GATHER_OUTPUT");
-  return comm.size() > 1 && parallel_hdf5() && !(g && std::string(g) == "1");
+  return g && std::string(g) == "1";
+}
+
+// Whether the ranks write their own particles into snapshots and checkpoints (parallel HDF5),
+// else rank 0 writes them from a gather.
+bool use_shared_output(const parallel::Comm& comm) {
+  return comm.size() > 1 && parallel_hdf5() && !gather_everything();
 }
 
 // Ranks 1..N-1 of a decomposed run: the same simulation calls and collectives as rank 0's
@@ -441,10 +460,12 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
   const Vec<D> up = Vec<D>::Unit(D - 1);
   const double band = 2.0 * setup.params.h;
   const std::string ck_path = (out / "checkpoint.h5").string();
+  const GaugeRegion<D> region = gauge_region<D>(spec.gauges, gauge_context(setup));
   // Rank 0's output round, from this rank's side (see run_dim's `round`).
   auto round = [&](Round r) {
     if (r.bits & kRound) view.reduce_counts();
     if (r.bits & kGather) view.gather();
+    if (r.bits & kGauges) view.gather_region(region);
     if (r.bits & (kWatch | kCheckpoint)) watchdog.check(view.local(), view);
     if (r.bits & kDiag)
       diagnostics_row(sim->particles(), view, sim->steps(), sim->dt(), up, setup.floor, band,
@@ -591,13 +612,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
   for (const auto& w : setup.warnings) log << "  " << w << "\n";
 
   // Gauge context, before the particles move into the simulation.
-  GaugeContext gctx;
-  gctx.params = setup.params;
-  gctx.up_axis = D - 1;
-  gctx.floor = setup.floor;
-  gctx.line_top = setup.params.domain_max[D - 1];
-  for (std::size_t b = 0; b < setup.bodies.size(); ++b)
-    gctx.body_ids[setup.bodies[b].name] = static_cast<int>(b);
+  const GaugeContext gctx = gauge_context(setup);
+  const GaugeRegion<D> region = gauge_region<D>(spec.gauges, gctx);
   const RunMetadata meta = make_metadata(spec, setup, sum, prov);
   // The set-up worked: only now is an earlier run's output removed (--overwrite).
   if (!opt.restart && opt.overwrite) remove_run_files(out_dir);
@@ -794,13 +810,15 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
   auto plan = [&](bool after_step, bool final_state) {
     const double t = sim->time();
     Round r{0, snapshot};
-    if (gauges.due(t) || (after_step && gauges.averages())) r.bits |= kGather;
+    if (gauges.due(t) || (after_step && gauges.averages())) r.bits |= kGauges;
     if (after_step && watchdog.due(sim->steps())) r.bits |= kWatch;
     if (diag_timer.due(t)) r.bits |= kDiag;
     if (out_timer.due(t) || (final_state && out_timer.next > t + 1e-12 && snapshot > 0))
       r.bits |= kSnapshot;
     if (ck_timer.due(t) || final_state) r.bits |= kCheckpoint;
     if (!view.shared_output() && (r.bits & (kSnapshot | kCheckpoint))) r.bits |= kGather;
+    if ((r.bits & kGauges) && gather_everything()) r.bits |= kGather;
+    if (r.bits & kGather) r.bits &= ~unsigned{kGauges};  // the whole state serves the gauges
     if (r.bits) r.bits |= kRound;
     return r;
   };
@@ -814,6 +832,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
     proto.symmetric();
     if (r.bits & kRound) view.reduce_counts();
     if (r.bits & kGather) view.gather();
+    if (r.bits & kGauges) view.gather_region(region);
     const bool warned = (r.bits & (kWatch | kCheckpoint)) && watchdog.check(view.local(), view);
     std::vector<double> row;
     if (r.bits & kDiag)

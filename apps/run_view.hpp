@@ -6,8 +6,9 @@
 //     rank's own particles (local()) and combine;
 //   - with shared output (parallel HDF5), every rank writes its own particles into the
 //     snapshots and checkpoints (share(): the counts that place its rows);
-//   - gather() brings every rank's particles and accelerations to rank 0, for the gauges, and
-//     for snapshots and checkpoints where the build has no parallel HDF5;
+//   - gather_region() brings the particles within the gauges' reach to rank 0, for the gauges;
+//     gather() brings every rank's particles there, for snapshots and checkpoints where the
+//     build has no parallel HDF5;
 //   - settle() moves the particles that left their slab to their owners once the outputs of a
 //     step are written.
 // All of these are collective. A gather costs O(N) on rank 0 (the README, "Several ranks").
@@ -55,6 +56,21 @@ class RunView {
     const Simulation<D>& s = sim_;
     layout_ =
         parallel::gather_to_root<D>(s.particles(), comm_, all_, &s.acceleration(), &ace_, buf_);
+  }
+
+  // Collective: the active particles in `region` (the gauges' reach) and their accelerations
+  // on rank 0, in the order a whole gather gives them: particles(), pressure() and
+  // acceleration() then hold just these. O(particles near the gauges), not O(N).
+  template <class Region>
+  void gather_region(const Region& region) {
+    if (!decomposed()) return;
+    const Simulation<D>& s = sim_;
+    const ParticleSet<D>& ps = s.particles();
+    select_.clear();
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (region.contains(ps, i)) select_.push_back(static_cast<std::uint32_t>(i));
+    parallel::gather_selected_to_root<D>(ps, select_, comm_, all_, s.acceleration(), ace_, buf_,
+                                         region_counts_);
   }
 
   // Collective: the particles that left their rank's slab since the last step's sort move to
@@ -190,6 +206,8 @@ class RunView {
   parallel::Comm comm_;
   bool shared_ = false;
   mutable std::vector<double> payload_;  // max_with's buffer
+  std::vector<std::uint32_t> select_;    // gather_region's selection
+  std::vector<std::uint64_t> region_counts_;
   ParticleSet<D> all_;
   std::vector<Vec<D>> ace_;
   std::vector<double> press_;

@@ -215,6 +215,27 @@ ShareRows share_rows(const WriteShare& w) {
   return r;
 }
 
+// A rank whose collective write failed must still make every later collective call the others
+// make (or they wait for it forever): run() keeps the first failure and goes on, rethrow()
+// reports it once all the calls are made.
+class CollectiveErrors {
+ public:
+  template <class Fn>
+  void run(Fn&& fn) {
+    try {
+      fn();
+    } catch (const std::exception& e) {
+      if (first_.empty()) first_ = e.what();
+    }
+  }
+  void rethrow() const {
+    if (!first_.empty()) throw std::runtime_error(first_);
+  }
+
+ private:
+  std::string first_;
+};
+
 // Logical AND of `ok` over every rank (collective); the flag itself on one process.
 bool all_ranks_ok(bool ok) {
 #ifdef SWELL_PARALLEL_HDF5
@@ -228,8 +249,15 @@ bool all_ranks_ok(bool ok) {
 
 // Every rank writes its rows (`rows(root, dxpl)`) into the existing file `tmp`, opened through
 // MPI-IO with collective transfers. Returns what went wrong on this rank ("" if nothing).
+// Test hook (SWELL_TEST_FAIL_ROWS=R): rank R reports its rows as failed once it has made every
+// collective call, as a rank whose disk filled up in the middle of a write would.
+bool fail_rows_for_test(int rank) {
+  const char* v = std::getenv("SWELL_TEST_FAIL_ROWS");
+  return v && *v && std::atoi(v) == rank;
+}
+
 template <class Rows>
-std::string write_rows_shared(const std::string& tmp, Rows&& rows) {
+std::string write_rows_shared(const std::string& tmp, int rank, Rows&& rows) {
 #ifdef SWELL_PARALLEL_HDF5
   try {
     Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
@@ -241,12 +269,15 @@ std::string write_rows_shared(const std::string& tmp, Rows&& rows) {
     H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE);
     rows(Loc{f.get(), tmp, "/"}, dxpl.get());
     if (!f.close()) fail_h5(tmp, "", "cannot be closed after the ranks wrote their rows");
+    if (fail_rows_for_test(rank))
+      fail(tmp, "", "rank " + std::to_string(rank) + " failed its rows (SWELL_TEST_FAIL_ROWS)");
   } catch (const std::exception& e) {
     return e.what();
   }
   return {};
 #else
   (void)rows;
+  (void)rank;
   return "HDF5 file '" + tmp + "': this build has no parallel HDF5 to write it from several ranks";
 #endif
 }
@@ -280,7 +311,7 @@ bool write_h5_shared(const std::string& path, const WriteShare& share, Skeleton&
     remove_quietly(tmp);
     throw std::runtime_error(err);
   }
-  err = write_rows_shared(tmp, rows);
+  err = write_rows_shared(tmp, share.rank, rows);
   if (!all_ranks_ok(err.empty())) {
     if (!root) {
       if (!err.empty()) std::fprintf(stderr, "swell (rank %d): %s\n", share.rank, err.c_str());
@@ -510,9 +541,11 @@ void snapshot_rows(const Loc& root, hid_t dxpl, const std::string& name, const P
   if (!g.valid()) fail_h5(root.file, "group '" + group + "'", "cannot be opened");
   const Loc snap{g.get(), root.file, group};
   const std::uint64_t first = share_rows(share).active_first;
+  CollectiveErrors errors;
   snapshot_arrays(ps, pressure, [&](const char* field, const auto& a) {
-    write_rows(snap, field, a, 0, ps.size(), first, dxpl);
+    errors.run([&] { write_rows(snap, field, a, 0, ps.size(), first, dxpl); });
   });
+  errors.rethrow();
 }
 
 void check_pressure(const std::string& file, const std::string& name, std::size_t have,
@@ -685,10 +718,14 @@ void checkpoint_rows(const Loc& root, hid_t dxpl, const ParticleSet<D>& ps,
   Handle g = open_group(root, "particles");
   const Loc p = root.at(g.get(), "particles");
   const ShareRows r = share_rows(share);
+  CollectiveErrors errors;
   checkpoint_arrays(ps, [&](const char* name, const auto& v) {
-    write_rows(p, name, v, 0, ps.n_active, r.active_first, dxpl);
-    write_rows(p, name, v, ps.n_active, ps.total() - ps.n_active, r.excluded_first, dxpl);
+    errors.run([&] { write_rows(p, name, v, 0, ps.n_active, r.active_first, dxpl); });
+    errors.run([&] {
+      write_rows(p, name, v, ps.n_active, ps.total() - ps.n_active, r.excluded_first, dxpl);
+    });
   });
+  errors.rethrow();
 }
 
 template <int D>

@@ -395,4 +395,43 @@ const GatherLayout& gather_to_root(const ParticleSet<D>& ps, const Comm& comm, P
   return layout;
 }
 
+// The active particles `select` (indices into ps, increasing) of every rank on rank 0, in
+// rank order and each rank's order, with `extra` (one per active particle) alongside: a
+// filtered gather_to_root (the same relative order). Collective; `out` holds only active
+// particles. The counts per rank go to `counts` (rank 0). No allocation once the buffers grew.
+template <int D>
+void gather_selected_to_root(const ParticleSet<D>& ps, const std::vector<std::uint32_t>& select,
+                             const Comm& comm, ParticleSet<D>& out,
+                             const std::vector<Vec<D>>& extra, std::vector<Vec<D>>& extra_out,
+                             GatherBuffers& buf, std::vector<std::uint64_t>& counts) {
+  const std::size_t rec = record_bytes(ps), r = rec + sizeof(Vec<D>);
+  const auto n = static_cast<std::size_t>(comm.size());
+  comm.gather_all(select.size(), counts);
+  buf.send.resize(select.size() * r);
+  std::byte* o = buf.send.data();
+  for (const std::uint32_t i : select) {
+    pack(ps, i, o);
+    std::memcpy(o + rec, extra[i].data(), sizeof(Vec<D>));
+    o += r;
+  }
+  buf.send_count.assign(n, 0);
+  buf.send_count[0] = static_cast<int>(select.size() * r);
+  comm.alltoallv(buf.send, buf.send_count, buf.recv, buf.recv_count, buf.recv_displ);
+  if (comm.rank() != 0) return;
+  std::uint64_t count = 0;
+  for (auto c : counts) count += c;
+  if (out.pos.empty()) out = empty_like(ps);
+  out.n_ghost = 0;
+  out.for_each_field([&](const FieldInfo& f, auto& a) {
+    if (out.enabled(f)) a.resize(count);
+  });
+  extra_out.resize(count);
+  for (std::uint64_t k = 0; k < count; ++k) {
+    const std::byte* in = buf.recv.data() + k * r;
+    unpack(out, k, in);
+    std::memcpy(extra_out[k].data(), in + rec, sizeof(Vec<D>));
+  }
+  out.n_active = count;
+}
+
 }  // namespace swell::parallel

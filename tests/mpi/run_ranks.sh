@@ -9,9 +9,10 @@
 #     leave with it (no rank waits forever), and the folder keeps its files unchanged;
 #   - the watchdog (rank 0's check) stops a run on 2 ranks with exit 3;
 #   - a command other than run on 2 ranks is refused with exit 2;
-#   - output from every rank (parallel HDF5 snapshots and checkpoints, VTK pieces + .pvtp)
-#     against rank 0 writing everything from a gather (SWELL_GATHER_OUTPUT=1): the same data,
-#     bit for bit, and the .pvtp files list every rank's piece.
+#   - output from every rank (parallel HDF5 snapshots and checkpoints, VTK pieces + .pvtp;
+#     gauges from the particles within their reach) against rank 0 writing everything from a
+#     whole gather (SWELL_GATHER_OUTPUT=1): the same data and gauge files, bit for bit, and the
+#     .pvtp files list every rank's piece.
 # Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
 #   - mDBC on 1 and 2 ranks (to 0.02 s);
 #   - the regular-wave flume with an absorbing piston (FLUME, 0.1 s, fixed dt) on 1 and 2
@@ -46,10 +47,26 @@ rc=0; run 2 -o r2 --set time.end=0.06 > refused.log 2>&1 || rc=$?
 if [ "$rc" != 2 ]; then echo "FAIL: a run into a used folder on 2 ranks exited $rc, not 2"; cat refused.log; exit 1; fi
 grep -q "already holds a run" refused.log || { echo "FAIL: no message from rank 0"; cat refused.log; exit 1; }
 [ "$(md5sum r2/checkpoint.h5)" = "$sum0" ] || { echo "FAIL: the refused run changed r2"; exit 1; }
-# The watchdog (rank 0's own check) stops a run: every rank leaves with exit 3.
+# The watchdog (every rank checks its particles, the results reduced) stops a run: every rank
+# leaves with exit 3.
 rc=0; run 2 -o wd --set time.end=0.06 --set watchdog.max_density=1.0001 > wd.log 2>&1 || rc=$?
 if [ "$rc" != 3 ]; then echo "FAIL: a watchdog stop on 2 ranks exited $rc, not 3"; cat wd.log; exit 1; fi
 grep -q "went unstable" wd.log || { echo "FAIL: no watchdog message"; cat wd.log; exit 1; }
+# A rank whose rows of a shared file fail (test hook, as a full disk would; parallel HDF5
+# builds): every rank leaves with exit 1 (none waits forever), the folder keeps its checkpoint
+# and earlier snapshots, and no temporary file is left.
+if ls half/vtk/*.pvtp > /dev/null 2>&1; then
+  cp -r half fail
+  sum0=$(md5sum < fail/checkpoint.h5)
+  rc=0; SWELL_TEST_FAIL_ROWS=1 timeout 120 "$mpirun" --oversubscribe -np 2 "$swell" run "$case" \
+    -q -t 1 --set dp=0.0028575 --set "$face" --restart fail --set time.end=0.06 > fail.log 2>&1 || rc=$?
+  [ "$rc" = 1 ] || { echo "FAIL: a failed shared write on 2 ranks exited $rc, not 1"; cat fail.log; exit 1; }
+  grep -q "another rank could not write its particles" fail.log || { echo "FAIL: no message"; cat fail.log; exit 1; }
+  [ "$(md5sum < fail/checkpoint.h5)" = "$sum0" ] || { echo "FAIL: the checkpoint changed"; exit 1; }
+  if find fail -name '*.tmp' | grep -q .; then echo "FAIL: temporary files left"; find fail -name '*.tmp'; exit 1; fi
+else
+  echo "no parallel HDF5 in this build: the failed shared write is not tested"
+fi
 # Only `swell run` is decomposed: another command on 2 ranks is refused (exit 2).
 rc=0; "$mpirun" --oversubscribe -np 2 "$swell" waves 0.05 1.2 0.4 > waves.log 2>&1 || rc=$?
 [ "$rc" = 2 ] || { echo "FAIL: swell waves on 2 ranks exited $rc, not 2"; cat waves.log; exit 1; }
