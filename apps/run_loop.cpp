@@ -2,6 +2,7 @@
 // (VTK, HDF5), gauges, diagnostics and checkpoints on their own schedules; restarts from a
 // checkpoint; prints the progress line and the summary.
 #include <omp.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -391,6 +392,12 @@ std::string decomposition_report(const Simulation<D>& sim, const parallel::Comm&
   const auto counts = comm.gather_all(sim.fluid_count());
   std::uint64_t lo = counts.front(), hi = counts.front(), total = 0;
   for (auto c : counts) lo = std::min(lo, c), hi = std::max(hi, c), total += c;
+  // Memory per rank: resident now and the peak (every rank sets up the whole case).
+  rusage use{};
+  getrusage(RUSAGE_SELF, &use);
+  const double now = resident_bytes() / 1048576.0, peak = use.ru_maxrss / 1024.0;
+  const double now_lo = comm.min(now), now_hi = comm.max(now);
+  const double peak_lo = comm.min(peak), peak_hi = comm.max(peak);
   std::ostringstream o;
   o << std::setprecision(3);
   o << "  decomposition:  " << comm.size() << " ranks, slabs along "
@@ -401,7 +408,9 @@ std::string decomposition_report(const Simulation<D>& sim, const parallel::Comm&
     << "    exchange time: " << ex_mean << " s mean, " << ex_max << " s max over ranks, "
     << 100.0 * ex_max / std::max(loop_max, 1e-9) << " % of the time loop\n"
     << "    fluid particles per rank now: " << lo << " - " << hi << " (imbalance "
-    << static_cast<double>(hi) * n / std::max<double>(1.0, static_cast<double>(total)) << ")\n";
+    << static_cast<double>(hi) * n / std::max<double>(1.0, static_cast<double>(total)) << ")\n"
+    << "    memory per rank: " << now_lo << " - " << now_hi << " MiB resident now, peak "
+    << peak_lo << " - " << peak_hi << " MiB\n";
   return o.str();
 }
 

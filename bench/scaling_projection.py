@@ -15,8 +15,11 @@ posts P messages, even empty ones), a neighbour round one latency, an allreduce 
 log2 P. Slabs along one axis: a
 rank's halo is its two faces, independent of P in weak scaling.
 
-The output gather to rank 0 is left out: at these sizes it does not fit one node (see
---gather); parallel output is a prerequisite for such runs.
+Output is left out: each rank writes its own rows of the snapshot and checkpoint files
+(parallel HDF5) and rank 0 gathers only the particles near the gauges, so it adds the file
+system's time per snapshot, not a per-step cost. Also left out: the set-up, which every rank
+still does for the whole case (its memory, ~140 B per particle of the case, bounds the run
+size until the set-up is distributed).
 
 Usage: scaling_projection.py [--per-rank N] [--threads T] [--latency S] [--bandwidth B/s]"""
 import argparse
