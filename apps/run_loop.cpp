@@ -409,8 +409,8 @@ std::string decomposition_report(const Simulation<D>& sim, const parallel::Comm&
     << 100.0 * ex_max / std::max(loop_max, 1e-9) << " % of the time loop\n"
     << "    fluid particles per rank now: " << lo << " - " << hi << " (imbalance "
     << static_cast<double>(hi) * n / std::max<double>(1.0, static_cast<double>(total)) << ")\n"
-    << "    memory per rank: " << now_lo << " - " << now_hi << " MiB resident now, peak "
-    << peak_lo << " - " << peak_hi << " MiB\n";
+    << "    memory per rank: " << now_lo << " - " << now_hi << " MiB resident now, peak " << peak_lo
+    << " - " << peak_hi << " MiB\n";
   return o.str();
 }
 
