@@ -124,46 +124,59 @@ std::string vtk_file(const std::string& name, const char* part, int k, bool piec
 
 // The collective part of a snapshot of a decomposed run with shared output: every rank writes
 // its VTK pieces and its rows of the HDF5 snapshot; rank 0 (h5/pvd given) also the .pvtp files,
-// the .pvd entries and the HDF5 run file's index. Every rank ends at the same agreement: on any
-// rank's failure rank 0 throws, the others return false.
+// the .pvd entries and the HDF5 run file's index. `normals`: the pieces hold wall normals (mDBC).
+// Every rank ends at the same agreement: on any rank's failure rank 0 throws, the others return
+// false.
 template <int D>
 bool shared_snapshot(const fs::path& out, const CaseSpec& spec, int k, long step, double time,
                      const ParticleSet<D>& ps, const std::vector<double>& p,
-                     const std::vector<std::string>& body_names, const WriteShare& share,
-                     const parallel::Comm& comm, Hdf5RunFile* h5, std::vector<PvdSeries*> pvds) {
+                     const std::vector<std::string>& body_names, bool normals,
+                     const WriteShare& share, const parallel::Comm& comm, Hdf5RunFile* h5,
+                     std::vector<PvdSeries*> pvds) {
   const bool root = comm.rank() == 0;
-  std::string err;
+  // Every rank's pieces, agreed; then rank 0's .pvtp files and .pvd entries, agreed: a .pvtp
+  // is listed only once all its pieces exist.
+  auto agreed = [&](const std::string& err, const std::string& what) {
+    if (comm.min(err.empty() ? 1.0 : 0.0) == 1.0) return true;
+    if (!root) {
+      if (!err.empty()) std::fprintf(stderr, "swell (rank %d): %s\n", comm.rank(), err.c_str());
+      return false;
+    }
+    throw std::runtime_error(err.empty() ? what : err);
+  };
   if (spec.vtk) {
+    std::vector<std::pair<const char*, ParticleFilter>> parts = {{"", ParticleFilter::All}};
+    if (spec.vtk_split)
+      parts.insert(parts.end(),
+                   {{"_fluid", ParticleFilter::Fluid}, {"_boundary", ParticleFilter::Boundary}});
+    auto piece_of = [&](std::size_t j) {
+      const std::string rel = vtk_file(spec.name, parts[j].first, k, true);
+      return rel.substr(0, rel.size() - 5) + ".vtp";  // vtk_piece_name adds the rank
+    };
+    std::string err;
     try {
-      std::vector<std::pair<const char*, ParticleFilter>> parts = {{"", ParticleFilter::All}};
-      if (spec.vtk_split)
-        parts.insert(parts.end(),
-                     {{"_fluid", ParticleFilter::Fluid}, {"_boundary", ParticleFilter::Boundary}});
-      for (std::size_t j = 0; j < parts.size(); ++j) {
+      for (std::size_t j = 0; j < parts.size(); ++j)
+        write_vtp<D>((out / vtk_piece_name(piece_of(j), comm.rank())).string(), ps, p,
+                     parts[j].second, &body_names, time);
+    } catch (const std::exception& e) {
+      err = e.what();
+    }
+    if (!agreed(err, "another rank could not write its VTK piece of snapshot " + std::to_string(k) +
+                         " (that rank's message is above)"))
+      return false;
+    try {
+      for (std::size_t j = 0; j < parts.size() && root; ++j) {
         const std::string rel = vtk_file(spec.name, parts[j].first, k, true);
-        const std::string vtp = rel.substr(0, rel.size() - 5) + ".vtp";
-        write_vtp<D>((out / vtk_piece_name(vtp, comm.rank())).string(), ps, p, parts[j].second,
-                     &body_names, time);
-        if (!root) continue;
         std::vector<std::string> pieces;
         for (int r = 0; r < comm.size(); ++r)
-          pieces.push_back(fs::path(vtk_piece_name(vtp, r)).filename().string());
-        write_pvtp((out / rel).string(), pieces, ps.normal.size() == ps.total(), true);
+          pieces.push_back(fs::path(vtk_piece_name(piece_of(j), r)).filename().string());
+        write_pvtp((out / rel).string(), pieces, normals, true);
         pvds.at(j)->add(time, rel);
       }
     } catch (const std::exception& e) {
       err = e.what();
     }
-  }
-  if (comm.min(err.empty() ? 1.0 : 0.0) < 1.0) {
-    if (!root) {
-      if (!err.empty()) std::fprintf(stderr, "swell (rank %d): %s\n", comm.rank(), err.c_str());
-      return false;
-    }
-    throw std::runtime_error(err.empty() ? "another rank could not write its VTK piece of "
-                                           "snapshot " +
-                                               std::to_string(k) + " (that rank's message is above)"
-                                         : err);
+    if (!agreed(err, "")) return false;
   }
   if (!spec.hdf5) return true;
   if (root) {
@@ -423,8 +436,10 @@ bool gather_everything() {
 
 // Whether the ranks write their own particles into snapshots and checkpoints (parallel HDF5),
 // else rank 0 writes them from a gather.
+// Collective: every rank gets the same answer (the environment may differ between nodes).
 bool use_shared_output(const parallel::Comm& comm) {
-  return comm.size() > 1 && parallel_hdf5() && !gather_everything();
+  if (comm.size() == 1) return false;
+  return comm.min(parallel_hdf5() && !gather_everything() ? 1.0 : 0.0) == 1.0;
 }
 
 // Ranks 1..N-1 of a decomposed run: the same simulation calls and collectives as rank 0's
@@ -466,16 +481,27 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
   Watchdog<D> watchdog(spec.watchdog, view.local(), setup.floor, view);
   std::vector<std::string> names;
   for (const auto& b : setup.bodies) names.push_back(b.name);
+  watchdog.set_body_names(names);
   const Vec<D> up = Vec<D>::Unit(D - 1);
   const double band = 2.0 * setup.params.h;
   const std::string ck_path = (out / "checkpoint.h5").string();
   const GaugeRegion<D> region = gauge_region<D>(spec.gauges, gauge_context(setup));
+  const bool normals = setup.params.boundary == BoundaryType::Mdbc;
+  // The watchdog stops every rank alike; rank 0 says why (this rank leaves quietly).
+  auto watch = [&] {
+    try {
+      watchdog.check(view.local(), view);
+    } catch (const InstabilityError&) {
+      throw PeerFailed(3);
+    }
+  };
   // Rank 0's output round, from this rank's side (see run_dim's `round`).
   auto round = [&](Round r) {
-    if (r.bits & kRound) view.reduce_counts();
+    if (!r.bits) return;
+    view.reduce_counts();
     if (r.bits & kGather) view.gather();
     if (r.bits & kGauges) view.gather_region(region);
-    if (r.bits & (kWatch | kCheckpoint)) watchdog.check(view.local(), view);
+    if (r.bits & kWatch) watch();
     if (r.bits & kDiag)
       diagnostics_row(sim->particles(), view, sim->steps(), sim->dt(), up, setup.floor, band,
                       spec.dp);
@@ -483,16 +509,17 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
     const bool shared = view.shared_output() && (r.bits & (kSnapshot | kCheckpoint));
     if (shared) share = view.share();
     proto.agree();  // rank 0's own outputs
-    if (shared) {
-      bool ok = true;
-      if (r.bits & kSnapshot)
-        ok = shared_snapshot<D>(out, spec, r.snapshot, sim->steps(), sim->time(), sim->particles(),
-                                view.local_pressure(), names, share, comm, nullptr, {});
-      if (ok && (r.bits & kCheckpoint))
-        ok = write_checkpoint_rows<D>(ck_path, sim->particles(), share);
-      if (!ok) throw PeerFailed(1);  // rank 0 says why
+    if (shared && (r.bits & kSnapshot) &&
+        !shared_snapshot<D>(out, spec, r.snapshot, sim->steps(), sim->time(), sim->particles(),
+                            view.local_pressure(), names, normals, share, comm, nullptr, {}))
+      throw PeerFailed(1);  // rank 0 says why
+    if (r.bits & kCheckpoint) {
+      watch();        // a checkpoint only of a healthy run
+      proto.agree();  // rank 0 writes it (from a gather), or every rank its rows
+      if (shared && !write_checkpoint_rows<D>(ck_path, sim->particles(), share))
+        throw PeerFailed(1);
     }
-    if (r.bits & kRound) view.settle();
+    view.settle();
   };
   proto.agree();  // rank 0: watchdog, output files
   if (!opt.restart) round(announce(comm, {}));
@@ -700,8 +727,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
   }
   // What the outputs read: the simulation itself; on several ranks each rank's own particles,
   // combined, or gathered here.
-  RunView<D> view(*sim, comm, use_shared_output(comm));
   proto.symmetric();
+  RunView<D> view(*sim, comm, use_shared_output(comm));
   view.reduce_counts();
   view.settle();
   Watchdog<D> watchdog(spec.watchdog, view.local(), setup.floor, view);
@@ -832,17 +859,20 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
     return r;
   };
   // Rank 0's side of an output round (run_worker has the others'): the collectives every rank
-  // makes alike (the run's counts, the gather, the watchdog, the diagnostics: a failure there
-  // is every rank's); rank 0's own outputs (diagnostics row, gauges, and from a gather the
-  // snapshot and checkpoint), agreed; then the shared snapshot and checkpoint, and settle().
-  // A checkpoint is written only after a watchdog check found the run healthy.
+  // makes alike (the run's counts, the gathers, the watchdog, the diagnostics: a failure there
+  // is every rank's); rank 0's own outputs (diagnostics row, gauges, from a gather the
+  // snapshot), agreed; the shared snapshot; the watchdog again before a checkpoint (written only
+  // while the run is healthy, after the step's other outputs as on one rank), rank 0's own
+  // checkpoint from a gather, agreed, or every rank's rows; then settle().
+  const bool normals = setup.params.boundary == BoundaryType::Mdbc;
   auto round = [&](Round r, bool after_step, bool stop) {
+    if (!r.bits) return;
     const double t = sim->time();
     proto.symmetric();
-    if (r.bits & kRound) view.reduce_counts();
+    view.reduce_counts();
     if (r.bits & kGather) view.gather();
     if (r.bits & kGauges) view.gather_region(region);
-    const bool warned = (r.bits & (kWatch | kCheckpoint)) && watchdog.check(view.local(), view);
+    const bool warned = (r.bits & kWatch) && watchdog.check(view.local(), view);
     std::vector<double> row;
     if (r.bits & kDiag)
       row = diagnostics_row(sim->particles(), view, sim->steps(), sim->dt(), up, setup.floor, band,
@@ -867,32 +897,33 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
     }
     std::map<std::string, double> ck;
     if (r.bits & kCheckpoint) {
-      const double t0 = omp_get_wtime();
       if (!stop && ck_timer.due(t)) ck_timer.advance(t);
       ck = checkpoint_schedule(share);
       diag.flush();
       gauges.flush();
-      if (!share) {
-        write_checkpoint<D>(ck_path, view.particles(), view.clock(), ck, tag);
-        last_checkpoint = t;
-      }
-      sum.output_seconds += omp_get_wtime() - t0;
     }
     proto.agree();
     proto.symmetric();
-    if (share) {
+    if (share && (r.bits & kSnapshot)) {
       const double t0 = omp_get_wtime();
-      if (r.bits & kSnapshot)
-        shared_snapshot<D>(out, spec, r.snapshot, sim->steps(), t, sim->particles(),
-                           view.local_pressure(), meta.body_names, *share, comm,
-                           h5 ? &*h5 : nullptr, {&pvd, &pvd_fluid, &pvd_bound});
-      if (r.bits & kCheckpoint) {
-        write_checkpoint<D>(ck_path, sim->particles(), view.clock(), ck, tag, &*share);
-        last_checkpoint = t;
-      }
+      shared_snapshot<D>(out, spec, r.snapshot, sim->steps(), t, sim->particles(),
+                         view.local_pressure(), meta.body_names, normals, *share, comm,
+                         h5 ? &*h5 : nullptr, {&pvd, &pvd_fluid, &pvd_bound});
       sum.output_seconds += omp_get_wtime() - t0;
     }
-    if (r.bits & kRound) view.settle();
+    if (r.bits & kCheckpoint) {
+      const double t0 = omp_get_wtime();
+      const bool warned_now = watchdog.check(view.local(), view);
+      proto.root_work();
+      if (warned_now) log << "  " << watchdog.warning() << "\n" << std::flush;
+      if (!share) write_checkpoint<D>(ck_path, view.particles(), view.clock(), ck, tag);
+      proto.agree();
+      proto.symmetric();
+      if (share) write_checkpoint<D>(ck_path, sim->particles(), view.clock(), ck, tag, &*share);
+      last_checkpoint = t;
+      sum.output_seconds += omp_get_wtime() - t0;
+    }
+    view.settle();
     proto.root_work();
   };
   proto.agree();

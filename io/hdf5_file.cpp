@@ -264,11 +264,19 @@ std::string write_rows_shared(const std::string& tmp, int rank, Rows&& rows) {
     if (H5Pset_fapl_mpio(fapl.get(), MPI_COMM_WORLD, MPI_INFO_NULL) < 0)
       fail_h5(tmp, "", "cannot be set up for MPI-IO");
     Handle f(H5Fopen(tmp.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
-    if (!f.valid()) fail_h5(tmp, "", "cannot be opened by every rank (MPI-IO)");
+    if (!all_ranks_ok(f.valid())) {
+      if (!f.valid()) fail_h5(tmp, "", "cannot be opened on this rank (MPI-IO)");
+      return "HDF5 file '" + tmp + "': another rank could not open it (MPI-IO)";
+    }
     Handle dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
     H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE);
-    rows(Loc{f.get(), tmp, "/"}, dxpl.get());
-    if (!f.close()) fail_h5(tmp, "", "cannot be closed after the ranks wrote their rows");
+    CollectiveErrors errors;
+    errors.run([&] { rows(Loc{f.get(), tmp, "/"}, dxpl.get()); });
+    // Every rank's rows on disk (MPI_File_sync) before rank 0 marks the file complete.
+    const bool flushed = H5Fflush(f.get(), H5F_SCOPE_GLOBAL) >= 0;
+    const bool closed = f.close();
+    errors.rethrow();
+    if (!flushed || !closed) fail_h5(tmp, "", "cannot be synced and closed after the rows");
     if (fail_rows_for_test(rank))
       fail(tmp, "", "rank " + std::to_string(rank) + " failed its rows (SWELL_TEST_FAIL_ROWS)");
   } catch (const std::exception& e) {
@@ -538,12 +546,12 @@ void snapshot_rows(const Loc& root, hid_t dxpl, const std::string& name, const P
                    const std::vector<double>& pressure, const WriteShare& share) {
   const std::string group = "/particles/" + name;
   Handle g(H5Gopen2(root.id, group.c_str(), H5P_DEFAULT), H5Gclose);
-  if (!g.valid()) fail_h5(root.file, "group '" + group + "'", "cannot be opened");
+  if (!all_ranks_ok(g.valid())) fail(root.file, "group '" + group + "'", "cannot be opened");
   const Loc snap{g.get(), root.file, group};
   const std::uint64_t first = share_rows(share).active_first;
   CollectiveErrors errors;
   snapshot_arrays(ps, pressure, [&](const char* field, const auto& a) {
-    errors.run([&] { write_rows(snap, field, a, 0, ps.size(), first, dxpl); });
+    errors.run([&] { write_rows(snap, field, a, 0, ps.size(), first, dxpl, all_ranks_ok); });
   });
   errors.rethrow();
 }
@@ -564,7 +572,7 @@ void Hdf5RunFile::write_snapshot(long step, double time, const ParticleSet<D>& p
   QuietErrors quiet;
   const std::string name = snapshot_name(step);
   const std::string file = snapshot_path(path_, step);
-  check_pressure(file, name, pressure.size(), ps.size());
+  if (!share) check_pressure(file, name, pressure.size(), ps.size());
   ++writes_;
   auto hook = [&] {
     if (kill_point_ == 1 && writes_ == kill_at_) std::raise(SIGKILL);
@@ -582,6 +590,8 @@ void Hdf5RunFile::write_snapshot(long step, double time, const ParticleSet<D>& p
     write_h5_shared(
         file, *share,
         [&](const Loc& root) {
+          // (checked here: a failure before the first agreement would leave the others waiting)
+          check_pressure(file, name, pressure.size(), ps.size());
           snapshot_skeleton(root, meta_, name, ps, pressure, share_rows(*share).active_total,
                             false);
         },
@@ -715,14 +725,16 @@ void checkpoint_finish(const Loc& root) {
 template <int D>
 void checkpoint_rows(const Loc& root, hid_t dxpl, const ParticleSet<D>& ps,
                      const WriteShare& share) {
-  Handle g = open_group(root, "particles");
+  Handle g(H5Gopen2(root.id, "particles", H5P_DEFAULT), H5Gclose);
+  if (!all_ranks_ok(g.valid())) fail(root.file, "group '/particles'", "cannot be opened");
   const Loc p = root.at(g.get(), "particles");
   const ShareRows r = share_rows(share);
   CollectiveErrors errors;
   checkpoint_arrays(ps, [&](const char* name, const auto& v) {
-    errors.run([&] { write_rows(p, name, v, 0, ps.n_active, r.active_first, dxpl); });
+    errors.run([&] { write_rows(p, name, v, 0, ps.n_active, r.active_first, dxpl, all_ranks_ok); });
     errors.run([&] {
-      write_rows(p, name, v, ps.n_active, ps.total() - ps.n_active, r.excluded_first, dxpl);
+      write_rows(p, name, v, ps.n_active, ps.total() - ps.n_active, r.excluded_first, dxpl,
+                 all_ranks_ok);
     });
   });
   errors.rethrow();
@@ -743,7 +755,7 @@ void write_checkpoint(const std::string& path, const ParticleSet<D>& ps,
                       const SimulationClock& clock, const std::map<std::string, double>& schedule,
                       const CaseTag& tag, const WriteShare* share) {
   QuietErrors quiet;
-  check_consistent(path, ps);
+  if (!share) check_consistent(path, ps);
   const std::string prev = path + ".prev";
   // Keep the previous checkpoint as .prev through a hard link, so `path` names a complete
   // checkpoint at every moment; the rename then replaces it atomically. An incomplete file at
@@ -761,6 +773,7 @@ void write_checkpoint(const std::string& path, const ParticleSet<D>& ps,
     write_h5_shared(
         path, *share,
         [&](const Loc& root) {
+          check_consistent(path, ps);  // inside the first stage: the others wait for its end
           checkpoint_skeleton(root, ps, clock, schedule, tag, r.active_total, r.total, false);
         },
         [&](const Loc& root, hid_t dxpl) { checkpoint_rows(root, dxpl, ps, *share); },

@@ -324,27 +324,36 @@ void write_column(const Loc& g, const char* name, const std::vector<T>& v, std::
 }
 
 // Writes v[from, from + rows) into rows [first, first + rows) of the existing dataset `name`
-// through the transfer list `dxpl` (collective in a file several ranks write: every rank calls
-// this for the same datasets in the same order, rows = 0 included).
-template <class T>
+// through the transfer list `dxpl`, collective in a file several ranks write: every rank calls
+// this for the same datasets in the same order (rows = 0 included). `all_ok(bool)` combines a
+// flag over those ranks (logical AND): the dataset is opened and the rows selected on every
+// rank before any rank writes, so a failure there stops every rank at the same call.
+template <class T, class AllOk>
 void write_rows(const Loc& g, const char* name, const std::vector<T>& v, std::size_t from,
-                std::size_t rows, std::uint64_t first, hid_t dxpl) {
+                std::size_t rows, std::uint64_t first, hid_t dxpl, AllOk&& all_ok) {
   using S = typename Column<T>::Scalar;
   constexpr int cols = Column<T>::cols;
   const hsize_t width = cols > 0 ? cols : 1;
-  Handle ds(H5Dopen2(g.id, name, H5P_DEFAULT), H5Dclose);
-  if (!ds.valid()) fail_h5(g.file, g.dataset(name), "is missing or cannot be opened");
-  Handle fspace(H5Dget_space(ds.get()), H5Sclose);
-  const hsize_t start[2] = {first, 0}, count[2] = {rows, width};
   const int rank = cols > 0 ? 2 : 1;
+  const hsize_t start[2] = {first, 0}, count[2] = {rows, width};
+  Handle ds(H5Dopen2(g.id, name, H5P_DEFAULT), H5Dclose);
+  Handle fspace(ds.valid() ? H5Dget_space(ds.get()) : -1, H5Sclose);
   Handle mspace(H5Screate_simple(rank, count, nullptr), H5Sclose);
-  if (rows == 0) {
-    H5Sselect_none(fspace.get());
-    H5Sselect_none(mspace.get());
-  } else if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) <
-             0) {
-    fail_h5(g.file, g.dataset(name),
-            "rows " + std::to_string(first) + "+" + std::to_string(rows) + " cannot be selected");
+  bool ok = ds.valid() && fspace.valid() && mspace.valid();
+  if (ok && rows == 0) {
+    ok = H5Sselect_none(fspace.get()) >= 0 && H5Sselect_none(mspace.get()) >= 0;
+  } else if (ok) {
+    hsize_t dims[2] = {0, 0};
+    H5Sget_simple_extent_dims(fspace.get(), dims, nullptr);
+    ok = first + rows <= dims[0] &&
+         H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) >= 0;
+  }
+  if (!all_ok(ok)) {
+    if (!ok)
+      fail_h5(g.file, g.dataset(name),
+              "rows " + std::to_string(first) + "+" + std::to_string(rows) +
+                  " cannot be opened or selected");
+    fail(g.file, g.dataset(name), "another rank could not open or select its rows");
   }
   static const S none{};  // a rank with no rows still takes part, from a valid address
   const S* data = rows > 0 ? reinterpret_cast<const S*>(v.data() + from) : &none;

@@ -91,8 +91,9 @@ Difference compare_to_one_rank(const CaseSetup<2>& setup, const char* what, long
     EXPECT_GT(d.stats.images, 0u) << what;
     EXPECT_GT(d.stats.migrated, 0u) << what << ": no particle crossed a slab face";
   }
-  if (rebalance > 0)
+  if (rebalance > 0) {
     EXPECT_GE(d.stats.rebalances, static_cast<std::uint64_t>(kSteps / rebalance - 1));
+  }
   if (comm.rank() == 0) {
     const ParticleSet<2>& ps = d.gathered;
     const ParticleSet<2>& rp = ref.particles();
