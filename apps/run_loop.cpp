@@ -345,12 +345,36 @@ void check_checkpoint_case(const std::string& ck, const CaseTag& saved, const Ca
 // on the same number of ranks (`saved` has its decomposition) gives each rank back exactly the
 // particles it held, in their order, and the slab bounds; otherwise the slabs are balanced by
 // fluid particle count along the domain's longest axis.
+// A restart on as many ranks as wrote the checkpoint: this rank's place in it (every rank's
+// counts from its decomposition record), so it reads only its own rows; none otherwise.
+std::optional<WriteShare> restart_rows(const std::map<std::string, double>& saved,
+                                       const parallel::Comm& comm) {
+  const auto ranks = saved.find("decomposition.ranks");
+  if (comm.size() == 1 || ranks == saved.end() || static_cast<int>(ranks->second) != comm.size())
+    return std::nullopt;
+  WriteShare w;
+  w.rank = comm.rank();
+  for (int r = 0; r < comm.size(); ++r) {
+    const auto a = saved.find("decomposition.active." + std::to_string(r));
+    const auto e = saved.find("decomposition.excluded." + std::to_string(r));
+    if (a == saved.end() || e == saved.end()) return std::nullopt;  // read it whole instead
+    w.active.push_back(static_cast<std::uint64_t>(a->second));
+    w.excluded.push_back(static_cast<std::uint64_t>(e->second));
+  }
+  return w;
+}
+
+// `mine_already`: `all` holds just this rank's particles (read with restart_rows).
 template <int D>
 Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
                                const std::map<std::string, double>* saved,
-                               const parallel::Comm& comm, long rebalance_every) {
+                               const parallel::Comm& comm, long rebalance_every,
+                               bool mine_already = false) {
   if (comm.size() == 1) return make_simulation<D>(setup, std::move(all));
-  const double width = halo_width(setup.params, all);  // `all`: setup.particles may be moved
+  // `all`: setup.particles may be moved. (The halo width is a reduction over the ranks where
+  // each holds only its own particles.)
+  const double width =
+      mine_already ? comm.max(halo_width(setup.params, all)) : halo_width(setup.params, all);
   const SolverParams& pr = setup.params;
   const int n = comm.size();
   auto get = [&](const std::string& key) {
@@ -373,7 +397,7 @@ Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
       layout.excluded.push_back(
           static_cast<std::uint64_t>(get("decomposition.excluded." + std::to_string(r))));
     }
-    mine = parallel::share_by_layout(all, layout, comm.rank());
+    mine = mine_already ? std::move(all) : parallel::share_by_layout(all, layout, comm.rank());
   } else {
     const int axis = parallel::longest_axis<D>(pr.domain_min.template head<D>(),
                                                pr.domain_max.template head<D>());
@@ -462,10 +486,12 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
   proto.agree();  // rank 0: folder, logs, checkpoint checks
   std::optional<Simulation<D>> sim;
   if (opt.restart) {
+    setup.particles = ParticleSet<D>();  // the checkpoint's particles replace the set-up's
     const std::string ck = latest_valid_checkpoint((out / "checkpoint.h5").string());
-    Checkpoint<D> c = read_checkpoint<D>(ck);
-    sim.emplace(
-        build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm, opt.rebalance_every));
+    const auto rows = restart_rows(read_checkpoint_schedule(ck), comm);
+    Checkpoint<D> c = read_checkpoint<D>(ck, rows ? &*rows : nullptr);
+    sim.emplace(build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm,
+                                    opt.rebalance_every, rows.has_value()));
     SimulationClock clock = c.clock;
     clock.excluded = {};  // rank 0 carries the run's counts
     sim->restore(clock);
@@ -685,15 +711,24 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
     if (checkpoint_dimension(ck) != D)
       throw std::invalid_argument(ck + " holds a " + std::to_string(checkpoint_dimension(ck)) +
                                   "D run, but " + spec.file + " is " + std::to_string(D) + "D");
-    Checkpoint<D> c = read_checkpoint<D>(ck);
-    if (c.particles.total() != n_total)
-      throw std::invalid_argument(ck + " holds " + std::to_string(c.particles.total()) +
-                                  " particles but " + spec.file + " makes " +
-                                  std::to_string(n_total) +
+    // The checkpoint's particles replace the set-up's; on as many ranks as wrote it, each rank
+    // reads only its own rows.
+    setup.particles = ParticleSet<D>();
+    const auto rows = restart_rows(read_checkpoint_schedule(ck), comm);
+    Checkpoint<D> c = read_checkpoint<D>(ck, rows ? &*rows : nullptr);
+    std::uint64_t in_file = c.particles.total();
+    if (rows) {
+      in_file = 0;
+      for (std::size_t r = 0; r < rows->active.size(); ++r)
+        in_file += rows->active[r] + rows->excluded[r];
+    }
+    if (in_file != n_total)
+      throw std::invalid_argument(ck + " holds " + std::to_string(in_file) + " particles but " +
+                                  spec.file + " makes " + std::to_string(n_total) +
                                   ": restart needs the case the run was started with");
     proto.agree();  // the other ranks read the checkpoint now
-    sim.emplace(
-        build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm, opt.rebalance_every));
+    sim.emplace(build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm,
+                                    opt.rebalance_every, rows.has_value()));
     sim->restore(c.clock);
     sim->restore_hooks(c.schedule);
     check_checkpoint_case(ck, c.tag, tag, spec.file);  // every rank, alike

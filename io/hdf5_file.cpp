@@ -799,8 +799,15 @@ bool write_checkpoint_rows(const std::string& path, const ParticleSet<D>& ps,
       [](const Loc&) {}, [] {}, [] {});
 }
 
+namespace {
+
+enum class ReadMode { Whole, Rows, Verify };
+
+// Reads a checkpoint: every row (Whole), one rank's rows (Rows: `share`), or (Verify) every
+// dataset in full, one at a time and dropped once read (whole-file validation without holding
+// the particle set).
 template <int D>
-Checkpoint<D> read_checkpoint(const std::string& path) {
+Checkpoint<D> read_checkpoint_as(const std::string& path, ReadMode mode, const WriteShare* share) {
   QuietErrors quiet;
   Handle f = open_file(path, H5F_ACC_RDONLY);
   const Loc root{f.get(), path, "/"};
@@ -815,6 +822,19 @@ Checkpoint<D> read_checkpoint(const std::string& path) {
   const auto n_active = read_attr<std::uint64_t>(root, "n_active");
   const auto total = read_attr<std::uint64_t>(root, "total");
   if (n_active > total) fail(path, "attribute 'n_active'", "exceeds the particle count");
+  ShareRows rows;
+  std::uint64_t mine_active = 0, mine_excluded = 0;
+  if (mode == ReadMode::Rows) {
+    rows = share_rows(*share);
+    const auto r = static_cast<std::size_t>(share->rank);
+    if (rows.active_total != n_active || rows.total != total || r >= share->active.size())
+      fail(path, "group '/schedule'",
+           "its decomposition record (" + std::to_string(rows.active_total) + " active of " +
+               std::to_string(rows.total) + ") does not match its particles (" +
+               std::to_string(n_active) + " of " + std::to_string(total) + ")");
+    mine_active = share->active[r];
+    mine_excluded = share->excluded[r];
+  }
 
   Checkpoint<D> c;
   if (has_attr(root, "case_identity")) {
@@ -834,15 +854,25 @@ Checkpoint<D> read_checkpoint(const std::string& path) {
     ps.for_each_field([&](const FieldInfo& fi, auto& v) {
       // Optional fields are restored when the checkpoint holds them.
       if (fi.optional && H5Lexists(g.get(), fi.name, H5P_DEFAULT) <= 0) return;
-      read_column(p, fi.name, total, v);
-      if (fi.optional) ps.mark_enabled(fi);
+      if (mode == ReadMode::Rows) {
+        read_rows(p, fi.name, total, rows.active_first, mine_active, v, 0);
+        read_rows(p, fi.name, total, rows.excluded_first, mine_excluded, v, mine_active);
+      } else {
+        read_column(p, fi.name, total, v);
+      }
+      if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<Role>>) {
+        for (Role r : v)
+          if (!is_valid_role(static_cast<std::uint8_t>(r)))
+            fail(path, p.dataset("role"),
+                 "holds a value other than 0 (fluid), 1 (fixed wall), 2 (moving wall) or 3 "
+                 "(floating)");
+      }
+      if (mode == ReadMode::Verify)
+        std::decay_t<decltype(v)>().swap(v);  // read in full, not kept
+      else if (fi.optional)
+        ps.mark_enabled(fi);
     });
-    for (Role r : ps.role) {
-      if (!is_valid_role(static_cast<std::uint8_t>(r)))
-        fail(path, p.dataset("role"),
-             "holds a value other than 0 (fluid), 1 (fixed wall), 2 (moving wall) or 3 (floating)");
-    }
-    ps.n_active = n_active;
+    ps.n_active = mode == ReadMode::Rows ? mine_active : n_active;
   }
   {
     Handle g = open_group(root, "clock");
@@ -857,7 +887,29 @@ Checkpoint<D> read_checkpoint(const std::string& path) {
     read_column(s, "values", names.size(), values);
     for (std::size_t i = 0; i < names.size(); ++i) c.schedule[names[i]] = values[i];
   }
+  if (mode == ReadMode::Verify) c.particles = ParticleSet<D>();
   return c;
+}
+
+}  // namespace
+
+template <int D>
+Checkpoint<D> read_checkpoint(const std::string& path, const WriteShare* rows) {
+  return read_checkpoint_as<D>(path, rows ? ReadMode::Rows : ReadMode::Whole, rows);
+}
+
+std::map<std::string, double> read_checkpoint_schedule(const std::string& path) {
+  QuietErrors quiet;
+  Handle f = open_file(path, H5F_ACC_RDONLY);
+  const Loc root{f.get(), path, "/"};
+  Handle g = open_group(root, "schedule");
+  const Loc s = root.at(g.get(), "schedule");
+  const auto names = read_strings(s, "names", true);
+  std::vector<double> values;
+  read_column(s, "values", names.size(), values);
+  std::map<std::string, double> out;
+  for (std::size_t i = 0; i < names.size(); ++i) out[names[i]] = values[i];
+  return out;
 }
 
 int checkpoint_dimension(const std::string& path) {
@@ -868,13 +920,14 @@ int checkpoint_dimension(const std::string& path) {
 
 std::string latest_valid_checkpoint(const std::string& path) {
   // A full read: HDF5 keeps no checksum of the data, so a partial check could miss damage.
+  // One dataset at a time: the check never holds the whole particle set.
   auto readable = [](const std::string& p, std::string& why) {
     try {
       const int dim = checkpoint_dimension(p);
       if (dim == 2) {
-        read_checkpoint<2>(p);
+        read_checkpoint_as<2>(p, ReadMode::Verify, nullptr);
       } else if (dim == 3) {
-        read_checkpoint<3>(p);
+        read_checkpoint_as<3>(p, ReadMode::Verify, nullptr);
       } else {
         fail(p, "attribute 'dim'", "unsupported dimension " + std::to_string(dim));
       }
@@ -918,7 +971,7 @@ template bool write_checkpoint_rows<2>(const std::string&, const ParticleSet<2>&
                                        const WriteShare&);
 template bool write_checkpoint_rows<3>(const std::string&, const ParticleSet<3>&,
                                        const WriteShare&);
-template Checkpoint<2> read_checkpoint<2>(const std::string&);
-template Checkpoint<3> read_checkpoint<3>(const std::string&);
+template Checkpoint<2> read_checkpoint<2>(const std::string&, const WriteShare*);
+template Checkpoint<3> read_checkpoint<3>(const std::string&, const WriteShare*);
 
 }  // namespace swell

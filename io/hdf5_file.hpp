@@ -197,15 +197,21 @@ template <int D>
 bool write_checkpoint_rows(const std::string& path, const ParticleSet<D>& ps,
                            const WriteShare& share);
 
-// Throws if the file is missing, unreadable, incomplete or holds another dimension.
+// Throws if the file is missing, unreadable, incomplete or holds another dimension. With
+// `rows` (a restart on as many ranks as wrote it): only rank rows.rank's particles (its active
+// rows, then its excluded ones; the counts of every rank from the checkpoint's decomposition
+// record), as that rank held them.
 template <int D>
-Checkpoint<D> read_checkpoint(const std::string& path);
+Checkpoint<D> read_checkpoint(const std::string& path, const WriteShare* rows = nullptr);
+
+// The /schedule of a checkpoint alone (small: timers, hooks' state, decomposition record).
+std::map<std::string, double> read_checkpoint_schedule(const std::string& path);
 
 // The dimension (2 or 3) of the run saved in a checkpoint.
 int checkpoint_dimension(const std::string& path);
 
 // `path` if it reads back completely, else path + ".prev" if that does; throws otherwise
-// (the message names both files and why each was rejected).
+// (the message names both files and why each was rejected). Reads one dataset at a time.
 std::string latest_valid_checkpoint(const std::string& path);
 
 // Keeps HDF5 from registering its atexit clean-up, which can crash (SIGSEGV) when a write

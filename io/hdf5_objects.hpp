@@ -394,6 +394,36 @@ std::size_t read_column(const Loc& g, const char* name, std::size_t rows, std::v
   return dims[0];
 }
 
+// Reads rows [first, first + count) of dataset `name` (which must have `rows` rows of the
+// width T needs) into v[at, at + count) (v resized to hold them).
+template <class T>
+void read_rows(const Loc& g, const char* name, std::size_t rows, std::uint64_t first,
+               std::size_t count, std::vector<T>& v, std::size_t at) {
+  using S = typename Column<T>::Scalar;
+  constexpr int cols = Column<T>::cols;
+  const hsize_t width = cols > 0 ? cols : 1;
+  const int rank = cols > 0 ? 2 : 1;
+  Handle ds(H5Dopen2(g.id, name, H5P_DEFAULT), H5Dclose);
+  if (!ds.valid()) fail_h5(g.file, g.dataset(name), "is missing or cannot be opened");
+  Handle fspace(H5Dget_space(ds.get()), H5Sclose);
+  hsize_t dims[2] = {0, 0};
+  if (H5Sget_simple_extent_ndims(fspace.get()) != rank)
+    fail(g.file, g.dataset(name), "has the wrong number of dimensions");
+  H5Sget_simple_extent_dims(fspace.get(), dims, nullptr);
+  if (dims[0] != rows || (cols > 0 && dims[1] != width) || first + count > rows)
+    fail(g.file, g.dataset(name),
+         "has " + std::to_string(dims[0]) + " rows; expected " + std::to_string(rows) +
+             " to read rows " + std::to_string(first) + "+" + std::to_string(count));
+  if (v.size() < at + count) v.resize(at + count);
+  if (count == 0) return;
+  const hsize_t start[2] = {first, 0}, n[2] = {count, width};
+  Handle mspace(H5Screate_simple(rank, n, nullptr), H5Sclose);
+  if (H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, n, nullptr) < 0 ||
+      H5Dread(ds.get(), H5Types<S>::mem(), mspace.get(), fspace.get(), H5P_DEFAULT,
+              reinterpret_cast<S*>(v.data() + at)) < 0)
+    fail_h5(g.file, g.dataset(name), "cannot be read");
+}
+
 // Names of the links in a group, in name order (snapshot names sort by step).
 std::vector<std::string> child_names(const Loc& g) {
   H5G_info_t info;
