@@ -381,6 +381,42 @@ TEST_F(Hdf5Test, CheckpointRoundTripIsBitwiseExact3D) {
   checkpoint_round_trip<3>(file("c3.h5"));
 }
 
+// A restart on as many ranks as wrote the checkpoint: each rank reads only its rows (its
+// active block, then its excluded block), exactly the particles the rank held, bit for bit.
+TEST_F(Hdf5Test, CheckpointRowsOfOneRank) {
+  const std::string path = file("rows.h5");
+  const auto ps = random_particles<3>(300, 9, 31);  // 291 active, 9 excluded
+  write_checkpoint<3>(path, ps, sample_clock(1.0), kSchedule);
+  WriteShare w;
+  w.active = {100, 120, 71};
+  w.excluded = {4, 0, 5};
+  std::size_t a0 = 0, e0 = 0;
+  for (int r = 0; r < 3; ++r) {
+    w.rank = r;
+    const auto c = read_checkpoint<3>(path, &w);
+    const auto ur = static_cast<std::size_t>(r);
+    ASSERT_EQ(c.particles.size(), w.active[ur]);
+    ASSERT_EQ(c.particles.total(), w.active[ur] + w.excluded[ur]);
+    for (std::size_t k = 0; k < c.particles.total(); ++k) {
+      const std::size_t i = k < w.active[ur] ? a0 + k : 291 + e0 + (k - w.active[ur]);
+      EXPECT_EQ(c.particles.id[k], ps.id[i]) << r << " " << k;
+      EXPECT_EQ(c.particles.vel_prev[k], ps.vel_prev[i]);
+      EXPECT_EQ(c.particles.rho[k], ps.rho[i]);
+      EXPECT_EQ(std::memcmp(c.particles.pos[k].data(), ps.pos[i].data(), sizeof(Vec<3>)), 0);
+    }
+    a0 += w.active[ur];
+    e0 += w.excluded[ur];
+  }
+  // A record that does not add up to the file's counts is refused, naming the file.
+  w.active = {100, 120, 70};
+  try {
+    read_checkpoint<3>(path, &w);
+    FAIL() << "a wrong decomposition record was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("decomposition record"), std::string::npos) << e.what();
+  }
+}
+
 void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
 }
