@@ -340,11 +340,6 @@ void check_checkpoint_case(const std::string& ck, const CaseTag& saved, const Ca
         "--overwrite or -o another folder");
 }
 
-// This rank's simulation. One rank: the case's, as always. Several: this rank's slab of the
-// particles (`all`: the set-up's or a checkpoint's) with a SlabExchange. A checkpoint written
-// on the same number of ranks (`saved` has its decomposition) gives each rank back exactly the
-// particles it held, in their order, and the slab bounds; otherwise the slabs are balanced by
-// fluid particle count along the domain's longest axis.
 // A restart on as many ranks as wrote the checkpoint: this rank's place in it (every rank's
 // counts from its decomposition record), so it reads only its own rows; none otherwise.
 std::optional<WriteShare> restart_rows(const std::map<std::string, double>& saved,
@@ -364,6 +359,11 @@ std::optional<WriteShare> restart_rows(const std::map<std::string, double>& save
   return w;
 }
 
+// This rank's simulation. One rank: the case's, as always. Several: this rank's slab of the
+// particles (`all`: the set-up's or a checkpoint's) with a SlabExchange. A checkpoint written
+// on the same number of ranks (`saved` has its decomposition) gives each rank back exactly the
+// particles it held, in their order, and the slab bounds; otherwise the slabs are balanced by
+// fluid particle count along the domain's longest axis.
 // `mine_already`: `all` holds just this rank's particles (read with restart_rows).
 template <int D>
 Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
