@@ -803,6 +803,18 @@ namespace {
 
 enum class ReadMode { Whole, Rows, Verify };
 
+// A checkpoint's /schedule: names and values.
+std::map<std::string, double> read_schedule(const Loc& root) {
+  Handle g = open_group(root, "schedule");
+  const Loc s = root.at(g.get(), "schedule");
+  const auto names = read_strings(s, "names", true);
+  std::vector<double> values;
+  read_column(s, "values", names.size(), values);
+  std::map<std::string, double> out;
+  for (std::size_t i = 0; i < names.size(); ++i) out[names[i]] = values[i];
+  return out;
+}
+
 // Reads a checkpoint: every row (Whole), one rank's rows (Rows: `share`), or (Verify) every
 // dataset in full, one at a time and dropped once read (whole-file validation without holding
 // the particle set).
@@ -879,14 +891,7 @@ Checkpoint<D> read_checkpoint_as(const std::string& path, ReadMode mode, const W
     const Loc k = root.at(g.get(), "clock");
     clock_fields(c.clock, [&](const char* name, auto& v) { read_field(k, name, v); });
   }
-  {
-    Handle g = open_group(root, "schedule");
-    const Loc s = root.at(g.get(), "schedule");
-    const auto names = read_strings(s, "names", true);
-    std::vector<double> values;
-    read_column(s, "values", names.size(), values);
-    for (std::size_t i = 0; i < names.size(); ++i) c.schedule[names[i]] = values[i];
-  }
+  c.schedule = read_schedule(root);
   if (mode == ReadMode::Verify) c.particles = ParticleSet<D>();
   return c;
 }
@@ -901,15 +906,7 @@ Checkpoint<D> read_checkpoint(const std::string& path, const WriteShare* rows) {
 std::map<std::string, double> read_checkpoint_schedule(const std::string& path) {
   QuietErrors quiet;
   Handle f = open_file(path, H5F_ACC_RDONLY);
-  const Loc root{f.get(), path, "/"};
-  Handle g = open_group(root, "schedule");
-  const Loc s = root.at(g.get(), "schedule");
-  const auto names = read_strings(s, "names", true);
-  std::vector<double> values;
-  read_column(s, "values", names.size(), values);
-  std::map<std::string, double> out;
-  for (std::size_t i = 0; i < names.size(); ++i) out[names[i]] = values[i];
-  return out;
+  return read_schedule(Loc{f.get(), path, "/"});
 }
 
 int checkpoint_dimension(const std::string& path) {
