@@ -5,20 +5,24 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "apps/case_runner.hpp"
 #include "apps/gauge_set.hpp"
+#include "apps/rank_setup.hpp"
 #include "apps/run_log.hpp"
 #include "apps/run_view.hpp"
 #include "apps/stop_signals.hpp"
@@ -373,8 +377,9 @@ Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
   if (comm.size() == 1) return make_simulation<D>(setup, std::move(all));
   // `all`: setup.particles may be moved. (The halo width is a reduction over the ranks where
   // each holds only its own particles.)
-  const double width =
-      mine_already ? comm.max(halo_width(setup.params, all)) : halo_width(setup.params, all);
+  const double width = mine_already || (setup.distributed && !saved)
+                           ? comm.max(halo_width(setup.params, all))
+                           : halo_width(setup.params, all);
   const SolverParams& pr = setup.params;
   const int n = comm.size();
   auto get = [&](const std::string& key) {
@@ -398,6 +403,32 @@ Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
           static_cast<std::uint64_t>(get("decomposition.excluded." + std::to_string(r))));
     }
     mine = mine_already ? std::move(all) : parallel::share_by_layout(all, layout, comm.rank());
+  } else if (setup.distributed && !saved) {
+    // Each rank holds its share of a distributed set-up: the same slabs from the histogram
+    // over every rank, then the particles travel to their slab's rank and each rank restores
+    // the whole set's order (by id, then the set-up's stable cell sort): the share a whole-case
+    // set-up would give it, in the same order.
+    const double w = comm.max(halo_width(setup.params, all));
+    const int axis = parallel::longest_axis<D>(pr.domain_min.template head<D>(),
+                                               pr.domain_max.template head<D>());
+    slabs = parallel::balanced_slabs(all, axis, pr.domain_min[axis], pr.domain_max[axis], w, comm,
+                                     4096, 0, true);
+    parallel::redistribute(all, slabs, comm);
+    std::vector<std::uint32_t> by_id(all.size());
+    std::iota(by_id.begin(), by_id.end(), 0u);
+    std::sort(by_id.begin(), by_id.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return all.id[a] < all.id[b]; });
+    all.permute_in_place(by_id);
+    std::vector<std::uint32_t>().swap(by_id);
+    const double support = kernel_support_factor(pr.kernel) * pr.h;
+    CellGrid<D> order(setup.order_lo.array() - support, setup.order_hi.array() + support, support);
+    typename CellGrid<D>::Reorder in_place;
+    in_place.in_place = true;
+    order.sort(all, in_place);
+    mine = std::move(all);
+    return make_simulation<D>(
+        setup, std::move(mine),
+        std::make_unique<parallel::SlabExchange<D>>(comm, slabs, w, rebalance_every));
   } else {
     const int axis = parallel::longest_axis<D>(pr.domain_min.template head<D>(),
                                                pr.domain_max.template head<D>());
@@ -476,8 +507,9 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
   const fs::path out(out_dir);
   RunProtocol proto(comm);
   std::optional<CaseSetup<D>> made;
+  proto.agree();  // rank 0's checks of the folder, before the collective set-up
   try {
-    made.emplace(setup_case<D>(spec));
+    made.emplace(rank_setup<D>(spec, comm));
   } catch (const std::exception&) {
     proto.post(2);  // meet rank 0 at the first agreement, then leave with this error
     throw;
@@ -599,7 +631,11 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
   const auto wall0 = std::chrono::steady_clock::now();
   // A failure here (rank 0's own checks above, or the set-up) is posted at the first
   // agreement, which the other ranks reach whether their set-up worked or not.
-  CaseSetup<D> setup = setup_case<D>(spec);
+  if (comm.size() > 1) {
+    proto.agree();  // the other ranks join the set-up now
+    proto.root_work();
+  }
+  CaseSetup<D> setup = rank_setup<D>(spec, comm);
   RunSummary sum;
   for (const auto& b : setup.bodies) (b.fluid ? sum.fluid : sum.boundary) += b.particles;
   const std::size_t n_total = sum.fluid + sum.boundary;

@@ -64,23 +64,34 @@ std::map<std::uint16_t, double> fluid_levels(const ParticleSet<D>& ps, const Vec
   return level;
 }
 
+// What initialise_hydrostatic takes from the whole case when `ps` is one share of it (a set-up
+// distributed over ranks, io/case_setup.cpp): the fluid bodies' levels and the box of every
+// particle (the sort's grid), so each share sorts and reads as the whole set would.
+template <int D>
+struct HydrostaticFrame {
+  std::map<std::uint16_t, double> level;
+  Vec<D> lo, hi;
+};
+
 // Hydrostatic initial density, so a tank at rest starts at rest: a fluid particle at depth d
 // below its body's free surface gets rho = rho0 (1 + rho0 g d / B)^(1/gamma). A wall particle
 // within the kernel support of fluid gets the density of that depth too (else the first steps
 // would compress the fluid against walls at rho0); other wall particles get rho0.
-// Reorders the particles (cell sort); ids are kept.
+// Reorders the particles (cell sort; stable, over the particles' box padded by one support);
+// ids are kept. `frame`: the whole case's levels and box (default: those of `ps`).
 template <int D>
-void initialise_hydrostatic(ParticleSet<D>& ps, const SolverParams& prm) {
+void initialise_hydrostatic(ParticleSet<D>& ps, const SolverParams& prm,
+                            const HydrostaticFrame<D>* frame = nullptr) {
   const TaitEos eos(prm.rho0, prm.c0, prm.gamma);
   const Vec<D> g = prm.gravity.template head<D>();
   const double gnorm = g.norm();
   for (std::size_t i = 0; i < ps.size(); ++i) ps.rho[i] = prm.rho0;
   if (gnorm > 0.0) {
     const Vec<D> up = -g / gnorm;
-    const auto level = fluid_levels(ps, up, prm.dp);
+    const auto level = frame ? frame->level : fluid_levels(ps, up, prm.dp);
     const double support = kernel_support_factor(prm.kernel) * prm.h;
-    Vec<D> lo = ps.pos[0], hi = ps.pos[0];
-    for (std::size_t i = 0; i < ps.size(); ++i) {
+    Vec<D> lo = frame ? frame->lo : ps.pos[0], hi = frame ? frame->hi : ps.pos[0];
+    for (std::size_t i = 0; i < ps.size() && !frame; ++i) {
       lo = lo.cwiseMin(ps.pos[i]);
       hi = hi.cwiseMax(ps.pos[i]);
     }

@@ -223,6 +223,9 @@ std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
   const double dp = opt.dp, gap = opt.gap_factor * dp;
   const double gap_tol = opt.gap_tolerance * dp;
   const char* up_name = dim == 2 ? "y" : "z";
+  const std::optional<FillShare>& share = opt.share;
+  if (share && (share->axis < 0 || share->axis >= dim))
+    throw std::invalid_argument("fill_bodies: the share's axis must be one of the dim axes");
 
   // Validate and plan every body.
   std::vector<BodyPlan> plans(bodies.size());
@@ -294,6 +297,7 @@ std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
     const long nrows = std::max(0L, nj) * std::max(0L, nk);
     std::vector<std::vector<Eigen::Vector3d>> rows(static_cast<std::size_t>(nrows));
     std::vector<std::size_t> row_in_region(static_cast<std::size_t>(nrows), 0);
+    std::vector<std::uint32_t> row_owned(share ? static_cast<std::size_t>(nrows) : 0, 0);
     const bool check_taken = b.fluid && !taken.empty();
     std::exception_ptr error;
 
@@ -312,14 +316,27 @@ std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
           for (int d = 1; d < dim; ++d)
             misses = misses || p[d] < plan.region_bounds.min[d] || p[d] > plan.region_bounds.max[d];
           if (misses || (plan.level && !(p[up] < *plan.level))) continue;
+          // A share: rows across the share's axis outside its reach are skipped; along a row
+          // (axis x) only the indices within reach are visited.
+          long i_lo = range.lo[0], i_hi = range.hi[0];
+          if (share) {
+            if (share->axis != 0 && !share->reaches(p[share->axis])) continue;
+            if (share->axis == 0) {
+              const double a = (share->lo - share->margin) / dp - 0.5;
+              const double z = (share->hi + share->margin) / dp - 0.5;
+              if (std::isfinite(a)) i_lo = std::max(i_lo, static_cast<long>(std::floor(a)));
+              if (std::isfinite(z)) i_hi = std::min(i_hi, static_cast<long>(std::ceil(z)));
+            }
+          }
           auto& row = rows[static_cast<std::size_t>(r)];
           std::size_t in_region = 0;
           if (!b.fluid) {
             RowTest wall = b.walls_inside
                                ? RowTest(plan.region, false, 0.0, plan.thickness, dp, opt.march)
                                : RowTest(plan.region, true, -plan.thickness, 0.0, dp, opt.march);
-            for (long i = range.lo[0]; i <= range.hi[0]; ++i) {
+            for (long i = i_lo; i <= i_hi; ++i) {
               p.x() = (i + 0.5) * dp;
+              if (share && share->axis == 0 && !share->reaches(p.x())) continue;
               if (box_gap(plan.region_bounds, p, dim) > 0.0) continue;
               if (!plan.open_faces.empty() &&
                   beyond_open_face(plan.open_faces, plan.shape_bounds, p))
@@ -333,10 +350,11 @@ std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
               clear_tests.push_back(
                   o.walls_inside ? RowTest(o.shape, true, -kInf, -gap + gap_tol, dp, opt.march)
                                  : RowTest(o.shape, false, gap - gap_tol, kInf, dp, opt.march));
-            for (long i = range.lo[0]; i <= range.hi[0]; ++i) {
+            for (long i = i_lo; i <= i_hi; ++i) {
               p.x() = (i + 0.5) * dp;
+              if (share && share->axis == 0 && !share->reaches(p.x())) continue;
               if (box_gap(plan.region_bounds, p, dim) > 0.0 || !inside(i, p)) continue;
-              ++in_region;
+              if (!share || share->owns(p)) ++in_region;
               bool keep = true;
               for (std::size_t o = 0; keep && o < obstacles.size(); ++o) {
                 const Obstacle& ob = obstacles[o];
@@ -350,6 +368,11 @@ std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
             }
           }
           row_in_region[static_cast<std::size_t>(r)] = in_region;
+          if (share) {
+            std::uint32_t own = 0;
+            for (const auto& q : row) own += share->owns(q) ? 1u : 0u;
+            row_owned[static_cast<std::size_t>(r)] = own;
+          }
         } catch (...) {
 #pragma omp critical(swell_fill_error)
           if (!error) error = std::current_exception();
@@ -366,8 +389,16 @@ std::vector<FilledBody> fill_bodies(const std::vector<BodyGeometry>& bodies,
     fb.points.reserve(total);
     for (auto& row : rows) fb.points.insert(fb.points.end(), row.begin(), row.end());
     fb.report.particles = fb.points.size();
+    if (share) {
+      fb.row_points.resize(rows.size());
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        fb.row_points[r] = static_cast<std::uint32_t>(rows[r].size());
+      fb.row_owned = std::move(row_owned);
+      fb.report.particles = 0;
+      for (const auto n : fb.row_owned) fb.report.particles += n;
+    }
     if (!b.fluid) fb.report.in_region = 0;
-    if (fb.points.empty())
+    if (fb.points.empty() && !share)
       throw std::invalid_argument("body '" + b.name +
                                   "' holds no particle at dp = " + std::to_string(dp) +
                                   " (is it thinner than dp, or inside a wall?)");

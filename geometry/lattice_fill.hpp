@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -53,6 +54,24 @@ struct BodyFillReport {
 struct FilledBody {
   BodyFillReport report;
   std::vector<Eigen::Vector3d> points;  // z = 0 in 2D
+  // With FillOptions::share: per lattice row of the body (rows in lattice order, the same rows
+  // whatever the share), how many of `points` lie in the row and how many of those are the
+  // share's own (FillShare::owns); a row's own points are consecutive. Report counts (in_region,
+  // particles) then count own points only.
+  std::vector<std::uint32_t> row_points, row_owned;
+};
+
+// A share of the lattice, for a set-up distributed over processes (issue #16): the points
+// whose coordinate along `axis` lies in [lo, hi) are the share's own; those within `margin`
+// outside it are filled too (a neighbour's own points, which the set-up reads near the share's
+// faces). Shares that tile the axis own every point exactly once.
+struct FillShare {
+  int axis = 0;
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  double margin = 0.0;
+  bool owns(const Eigen::Vector3d& p) const { return p[axis] >= lo && p[axis] < hi; }
+  bool reaches(double x) const { return x >= lo - margin && x < hi + margin; }
 };
 
 struct FillOptions {
@@ -68,6 +87,9 @@ struct FillOptions {
   // Reuse a shape test for the next points of a row while the signed distance (1-Lipschitz)
   // cannot cross a threshold there. Same result as evaluating every point; off for tests.
   bool march = true;
+  // Fill only this share of the lattice (none: all of it). A body may then get no point here
+  // (no error: the caller checks the sum over the shares).
+  std::optional<FillShare> share;
 };
 
 // An upper estimate of the particles fill_bodies() would make, per body (case order), from the

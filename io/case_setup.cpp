@@ -3,11 +3,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -107,9 +110,12 @@ std::string bytes_text(double b) {
 
 // Refuses a case whose particles (upper estimate from the bounds) exceed limits.max_particles
 // or whose memory exceeds 80 % of what the machine has available, before anything is filled.
-void check_size(const CaseSpec& spec, const geometry::FillEstimate& est, int dim) {
+// `node_share`: the fraction of the case this machine holds (a distributed set-up: its ranks'
+// shares; 1 otherwise).
+void check_size(const CaseSpec& spec, const geometry::FillEstimate& est, int dim,
+                double node_share) {
   const double avail = available_memory_bytes();
-  const double need = estimated_bytes(est.total, 0.0, bytes_per_particle(spec, dim));
+  const double need = estimated_bytes(est.total * node_share, 0.0, bytes_per_particle(spec, dim));
   const bool too_many = est.total > spec.max_particles;
   const bool too_big = avail > 0.0 && need > 0.8 * avail;
   if (!too_many && !too_big) return;
@@ -117,7 +123,8 @@ void check_size(const CaseSpec& spec, const geometry::FillEstimate& est, int dim
   m << std::setprecision(3) << "the case would make up to " << est.total << " particles (";
   for (std::size_t b = 0; b < est.particles.size() && b < spec.bodies.size(); ++b)
     m << (b ? ", " : "") << "'" << spec.bodies[b].name << "' " << est.particles[b];
-  m << ") at dp = " << spec.dp << " m, needing about " << bytes_text(need) << " of memory; ";
+  m << ") at dp = " << spec.dp << " m, needing about " << bytes_text(need) << " of memory"
+    << (node_share < 1.0 ? " on this machine (its ranks' shares)" : "") << "; ";
   if (too_big) m << "this machine has " << bytes_text(avail) << " available";
   if (too_big && too_many) m << ", and ";
   if (too_many) m << "limits.max_particles is " << spec.max_particles;
@@ -134,26 +141,179 @@ std::string point_text(const Eigen::Vector3d& x, int dim) {
   return o.str();
 }
 
+// A step that may fail on some ranks only (a distributed set-up): every rank learns whether
+// one failed; the failing rank rethrows its own error, the others the lowest failing rank's
+// message. One process: the step as it is.
+template <class Fn>
+void agreed(const SetupReduce& red, Fn&& fn) {
+  if (red.size() == 1) {
+    fn();
+    return;
+  }
+  std::exception_ptr mine;
+  std::string msg;
+  try {
+    fn();
+  } catch (const std::exception& e) {
+    mine = std::current_exception();
+    msg = e.what();
+    if (msg.empty()) msg = "set-up failed";
+  }
+  const std::string first = red.first_message(msg);
+  if (mine) std::rethrow_exception(mine);
+  if (!first.empty()) throw std::invalid_argument(first);
+}
+
+// This rank's share of the lattice in a distributed set-up: cuts along the longest axis of the
+// bodies' bounds where the estimated counts (each body's spread evenly over its bounds along
+// the axis) reach r / size of the total; a margin of one kernel support (the hydrostatic
+// state of a wall particle reads the fluid within it).
+geometry::FillShare fill_share(const std::vector<geometry::BodyGeometry>& geo,
+                               const geometry::FillEstimate& est, int dim, double margin,
+                               const SetupReduce& red) {
+  std::vector<geometry::Aabb> boxes(geo.size());
+  geometry::Aabb all;
+  for (std::size_t b = 0; b < geo.size(); ++b) {
+    const auto& g = geo[b];
+    const geometry::BodyGeometry* shaped =
+        g.shape ? &g
+        : g.container >= 0 && static_cast<std::size_t>(g.container) < geo.size()
+            ? &geo[static_cast<std::size_t>(g.container)]
+            : nullptr;
+    if (!shaped || !shaped->shape) continue;
+    boxes[b] = shaped->shape->bounds();
+    all.extend(boxes[b].min);
+    all.extend(boxes[b].max);
+  }
+  geometry::FillShare share;
+  share.margin = margin;
+  int axis = 0;
+  for (int d = 1; d < dim; ++d)
+    if (all.max[d] - all.min[d] > all.max[axis] - all.min[axis]) axis = d;
+  share.axis = axis;
+  const double lo = all.min[axis], hi = all.max[axis];
+  const int n = red.size(), me = red.rank();
+  if (!(hi > lo) || n == 1) {
+    if (me > 0) share.lo = share.hi = std::numeric_limits<double>::infinity();  // all on rank 0
+    return share;
+  }
+  // Weighted by the fluid bodies (as the run's slabs are, apps/run_loop.cpp: fewer particles
+  // move after the fill), by every body where no fluid body has an estimate.
+  constexpr int kBins = 4096;
+  std::vector<double> hist(kBins, 0.0);
+  const double w = (hi - lo) / kBins;
+  bool by_fluid = false;
+  for (std::size_t b = 0; b < geo.size() && b < est.particles.size(); ++b)
+    by_fluid = by_fluid || (geo[b].fluid && est.particles[b] > 0.0);
+  for (std::size_t b = 0; b < geo.size() && b < est.particles.size(); ++b) {
+    if (by_fluid && !geo[b].fluid) continue;
+    if (!(boxes[b].max[axis] >= boxes[b].min[axis])) continue;
+    const int b0 = std::clamp(static_cast<int>((boxes[b].min[axis] - lo) / w), 0, kBins - 1);
+    const int b1 = std::clamp(static_cast<int>((boxes[b].max[axis] - lo) / w), 0, kBins - 1);
+    for (int k = b0; k <= b1; ++k)
+      hist[static_cast<std::size_t>(k)] += est.particles[b] / (b1 - b0 + 1);
+  }
+  double total = 0.0;
+  for (const double c : hist) total += c;
+  std::vector<double> cut(static_cast<std::size_t>(n) + 1);
+  cut.front() = -std::numeric_limits<double>::infinity();
+  cut.back() = std::numeric_limits<double>::infinity();
+  double run = 0.0;
+  int r = 1;
+  for (int k = 0; k < kBins && r < n; ++k) {
+    run += hist[static_cast<std::size_t>(k)];
+    while (r < n && run * n >= total * r) cut[static_cast<std::size_t>(r++)] = lo + (k + 1) * w;
+  }
+  for (; r < n; ++r) cut[static_cast<std::size_t>(r)] = hi;
+  share.lo = cut[static_cast<std::size_t>(me)];
+  share.hi = cut[static_cast<std::size_t>(me) + 1];
+  return share;
+}
+
+// The particle ids of a distributed fill: the index each point has in the whole case's fill
+// (bodies in order, each in lattice order), from the per-row counts of every share. Margin
+// points (a neighbour's) get kMarginId.
+constexpr std::uint32_t kMarginId = 0xFFFFFFFFu;
+
+std::vector<std::vector<std::uint64_t>> fill_ids(const std::vector<geometry::FilledBody>& filled,
+                                                 const geometry::FillShare& share,
+                                                 const SetupReduce& red,
+                                                 std::vector<std::uint64_t>& body_total) {
+  std::vector<std::vector<std::uint64_t>> ids(filled.size());
+  std::uint64_t offset = 0;
+  body_total.assign(filled.size(), 0);
+  for (std::size_t b = 0; b < filled.size(); ++b) {
+    const auto& fb = filled[b];
+    std::vector<std::uint64_t> below(fb.row_owned.begin(), fb.row_owned.end());
+    std::vector<std::uint64_t> all = below;
+    red.exscan(below);
+    red.sum(all);
+    std::uint64_t row_base = offset;
+    std::size_t at = 0;
+    auto& out = ids[b];
+    out.reserve(fb.points.size());
+    for (std::size_t r = 0; r < fb.row_points.size(); ++r) {
+      std::uint64_t next = row_base + below[r];
+      for (std::uint32_t k = 0; k < fb.row_points[r]; ++k, ++at)
+        out.push_back(share.owns(fb.points[at]) ? next++ : kMarginId);
+      row_base += all[r];
+    }
+    body_total[b] = row_base - offset;
+    offset = row_base;
+  }
+  return ids;
+}
+
 }  // namespace
 
 template <int D>
-CaseSetup<D> setup_case(const CaseSpec& spec) {
+CaseSetup<D> setup_case(const CaseSpec& spec, const SetupReduce& red) {
   CaseSetup<D> s;
   const auto fill0 = std::chrono::steady_clock::now();
   geometry::FillOptions fo;
   fo.dim = D;
   fo.dp = spec.dp;
+  const bool distributed = red.size() > 1;
+  const double node_share = distributed ? static_cast<double>(red.node_size()) / red.size() : 1.0;
   const std::vector<geometry::BodyGeometry> geo = case_geometry(spec, &s.meshes);
+  geometry::FillEstimate estimate;
   try {
-    check_size(spec, geometry::estimate_fill(geo, fo), D);
+    estimate = geometry::estimate_fill(geo, fo);
+    check_size(spec, estimate, D, node_share);
   } catch (const std::invalid_argument& e) {
     throw CaseError(spec.file, 0, e.what());
   }
+  // A distributed set-up fills this rank's share, with a margin of one kernel support.
+  const double support0 =
+      kernel_support_factor(spec.kernel) * spec.coefh * std::sqrt(static_cast<double>(D)) * spec.dp;
+  if (distributed) fo.share = fill_share(geo, estimate, D, support0 * (1.0 + 1e-9), red);
   std::vector<geometry::FilledBody> filled;
-  try {
-    filled = geometry::fill_bodies(geo, fo);
-  } catch (const std::invalid_argument& e) {
-    throw CaseError(spec.file, 0, e.what());
+  agreed(red, [&] {
+    try {
+      filled = geometry::fill_bodies(geo, fo);
+    } catch (const std::invalid_argument& e) {
+      throw CaseError(spec.file, 0, e.what());
+    }
+  });
+  // Whole-case ids and counts (a distributed set-up; one process: the fill's order).
+  std::vector<std::vector<std::uint64_t>> ids;
+  std::vector<std::uint64_t> body_total;
+  if (distributed) {
+    ids = fill_ids(filled, *fo.share, red, body_total);
+    std::vector<std::uint64_t> in_region;
+    for (const auto& fb : filled) in_region.push_back(fb.report.in_region);
+    red.sum(in_region);
+    for (std::size_t b = 0; b < filled.size(); ++b) {
+      filled[b].report.particles = body_total[b];
+      filled[b].report.in_region = in_region[b];
+      if (body_total[b] == 0)
+        throw CaseError(spec.file, 0,
+                        "body '" + filled[b].report.name +
+                            "' holds no particle at dp = " + std::to_string(spec.dp) +
+                            " (is it thinner than dp, or inside a wall?)");
+    }
+    if (std::accumulate(body_total.begin(), body_total.end(), std::uint64_t{0}) >= kMarginId)
+      throw CaseError(spec.file, 0, "the case makes more than 2^32 - 1 particles (ids are 32-bit)");
   }
   s.fill_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - fill0).count();
 
@@ -208,12 +368,19 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   for (std::size_t b = 0; b < filled.size(); ++b) {
     const auto& fb = filled[b];
     const bool fluid = fb.report.fluid;
-    s.bodies.push_back({fb.report.name, fluid, fb.points.size()});
+    s.bodies.push_back({fb.report.name, fluid, distributed ? body_total[b] : fb.points.size()});
     s.fill.push_back(fb.report);
-    for (const auto& x : fb.points)
-      s.particles.add(x.template head<D>(), Vec<D>::Zero(), spec.rho0, mass,
+    for (std::size_t k = 0; k < fb.points.size(); ++k) {
+      s.particles.add(fb.points[k].template head<D>(), Vec<D>::Zero(), spec.rho0, mass,
                       fluid ? Role::Fluid : Role::FixedWall, static_cast<std::uint16_t>(b));
+      if (distributed) s.particles.id.back() = static_cast<std::uint32_t>(ids[b][k]);
+    }
   }
+  std::vector<std::vector<std::uint64_t>>().swap(ids);
+  // A margin particle (a neighbour's, read by the hydrostatic state near the share's faces).
+  const auto in_margin = [&](std::size_t i) {
+    return distributed && s.particles.id[i] == kMarginId;
+  };
 
   // The wall model per body (bodies[].boundary, else physics.boundary.model). With any mDBC
   // body the run uses the mDBC module, which treats the DBC bodies' walls as DBC does.
@@ -228,25 +395,26 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   s.params.boundary = any_mdbc ? BoundaryType::Mdbc : BoundaryType::Dbc;
   // mDBC: each wall particle's vector to its wall surface, from its body's geometry (zero on
   // fluid and on the DBC bodies' walls).
-  if (any_mdbc) {
-    std::vector<Vec<D>> normals;
-    normals.reserve(total);
-    for (std::size_t b = 0; b < filled.size(); ++b) {
-      const auto& fb = filled[b];
-      if (fb.report.fluid || s.dbc_bodies[b]) {
-        normals.resize(normals.size() + fb.points.size(), Vec<D>::Zero());
-        continue;
+  if (any_mdbc)
+    agreed(red, [&] {
+      std::vector<Vec<D>> normals;
+      normals.reserve(total);
+      for (std::size_t b = 0; b < filled.size(); ++b) {
+        const auto& fb = filled[b];
+        if (fb.report.fluid || s.dbc_bodies[b]) {
+          normals.resize(normals.size() + fb.points.size(), Vec<D>::Zero());
+          continue;
+        }
+        std::vector<Eigen::Vector3d> n;
+        try {
+          n = geometry::wall_normals(geo[b], fb.points, fo);
+        } catch (const std::invalid_argument& e) {
+          throw CaseError(spec.file, spec.bodies[b].line, e.what());
+        }
+        for (const auto& v : n) normals.push_back(v.template head<D>());
       }
-      std::vector<Eigen::Vector3d> n;
-      try {
-        n = geometry::wall_normals(geo[b], fb.points, fo);
-      } catch (const std::invalid_argument& e) {
-        throw CaseError(spec.file, spec.bodies[b].line, e.what());
-      }
-      for (const auto& v : n) normals.push_back(v.template head<D>());
-    }
-    s.particles.enable("normal", normals);
-  }
+      s.particles.enable("normal", normals);
+    });
   // The lattice points are in the particles now: free them before the set-up's later stages.
   std::vector<geometry::FilledBody>().swap(filled);
 
@@ -264,6 +432,11 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     zmin = std::min(zmin, z);
     zmax = std::max(zmax, z);
   }
+  if (distributed) {
+    std::vector<double> z{-zmin, zmax};
+    red.max(z);
+    zmin = -z[0], zmax = z[1];
+  }
   if (!std::isfinite(zmin))
     throw std::invalid_argument(spec.file + ": the case holds no fluid particle");
   s.floor = zmin - 0.5 * spec.dp;
@@ -272,11 +445,22 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
 
   // Domain: given, or the bounding box of all particles plus a margin (particles leaving it
   // are excluded). The margin leaves room for splashes above open tanks.
-  Vec<D> lo = s.particles.pos[0], hi = s.particles.pos[0];
+  Vec<D> lo = Vec<D>::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::size_t i = 0; i < s.particles.size(); ++i) {
     lo = lo.cwiseMin(s.particles.pos[i]);
     hi = hi.cwiseMax(s.particles.pos[i]);
   }
+  // Every rank's box; kept for the hydrostatic sort, which a receiving rank repeats.
+  const auto reduce_box = [&](Vec<D>& a, Vec<D>& z) {
+    if (!distributed) return;
+    std::vector<double> v(2 * D);
+    for (int d = 0; d < D; ++d) v[d] = -a[d], v[D + d] = z[d];
+    red.max(v);
+    for (int d = 0; d < D; ++d) a[d] = -v[d], z[d] = v[D + d];
+  };
+  reduce_box(lo, hi);
+  s.order_lo = lo;
+  s.order_hi = hi;
   // A moving body must never be excluded: the box holds its whole path up to time.end.
   struct Swept {
     std::size_t body;
@@ -291,6 +475,12 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
       if (s.particles.body[i] != b) continue;
       blo.template head<D>() = blo.template head<D>().cwiseMin(s.particles.pos_ref[i]);
       bhi.template head<D>() = bhi.template head<D>().cwiseMax(s.particles.pos_ref[i]);
+    }
+    {
+      Vec<D> a = blo.template head<D>(), z = bhi.template head<D>();
+      reduce_box(a, z);
+      blo.template head<D>() = a;
+      bhi.template head<D>() = z;
     }
     if (D == 2) blo.z() = bhi.z() = 0.0;
     const auto corners = box_corners(blo, bhi);
@@ -343,18 +533,42 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   // outside would be excluded at the first step.
   const Vec<D> dmin = p.domain_min.template head<D>(), dmax = p.domain_max.template head<D>();
   if (!s.default_domain) {
-    std::vector<std::size_t> outside(spec.bodies.size(), 0);
+    std::vector<std::uint64_t> outside(spec.bodies.size(), 0);
     std::vector<std::size_t> first(spec.bodies.size(), 0);
     for (std::size_t i = 0; i < s.particles.size(); ++i) {
+      if (in_margin(i)) continue;
       const Vec<D>& x = s.particles.pos[i];
       if ((x.array() >= dmin.array()).all() && (x.array() <= dmax.array()).all()) continue;
       const std::size_t b = s.particles.body[i];
       if (outside[b]++ == 0) first[b] = i;
     }
+    // The example: the body's first particle outside (lowest id) on any rank.
+    std::vector<double> example(spec.bodies.size() * (D + 1), 0.0);
+    if (distributed) {
+      std::vector<std::uint64_t> any = outside;
+      red.sum(any);
+      if (std::any_of(any.begin(), any.end(), [](std::uint64_t c) { return c > 0; })) {
+        std::vector<double> lowest(spec.bodies.size(), -std::numeric_limits<double>::infinity());
+        for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+          if (outside[b]) lowest[b] = -static_cast<double>(s.particles.id[first[b]]);
+        red.max(lowest);
+        for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+          if (!outside[b] || -static_cast<double>(s.particles.id[first[b]]) != lowest[b]) continue;
+          example[b * (D + 1)] = 1.0;
+          for (int d = 0; d < D; ++d) example[b * (D + 1) + 1 + d] = s.particles.pos[first[b]][d];
+        }
+        red.sum(example);
+      }
+      outside = any;
+    } else {
+      for (std::size_t b = 0; b < spec.bodies.size(); ++b)
+        if (outside[b])
+          for (int d = 0; d < D; ++d) example[b * (D + 1) + 1 + d] = s.particles.pos[first[b]][d];
+    }
     for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
       if (outside[b] == 0) continue;
       Eigen::Vector3d x = Eigen::Vector3d::Zero();
-      x.template head<D>() = s.particles.pos[first[b]];
+      for (int d = 0; d < D; ++d) x[d] = example[b * (D + 1) + 1 + d];
       const bool fluid = spec.bodies[b].kind == BodySpec::Kind::Fluid;
       std::ostringstream m;
       m << "domain: " << outside[b] << " of the " << s.bodies[b].particles << " particles of "
@@ -395,8 +609,15 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     // the run (the estimate below includes them).
     const double free_now = available_memory_bytes();
     const double avail = free_now > 0.0 ? free_now + resident_bytes() : 0.0;  // 0: unknown
-    const double need = estimated_bytes(static_cast<double>(s.particles.size()), cells,
-                                        bytes_per_particle(spec, D));
+    // A distributed set-up: this machine's ranks hold their shares and a grid each.
+    double particles = static_cast<double>(s.particles.size()), node_cells = cells;
+    if (distributed) {
+      particles = 0.0;
+      for (const auto& b : s.bodies) particles += static_cast<double>(b.particles);
+      particles *= node_share;
+      node_cells *= red.node_size();
+    }
+    const double need = estimated_bytes(particles, node_cells, bytes_per_particle(spec, D));
     if (cells > 4.0e9 || (avail > 0.0 && need > 0.8 * avail)) {
       std::ostringstream m;
       m << std::setprecision(3) << "domain: " << point_text(p.domain_min, D) << " - "
@@ -427,9 +648,9 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     for (const auto& gb : geo)
       if (!gb.fluid && gb.walls_inside && gb.shape) tanks.push_back(&gb);
     if (!tanks.empty()) {
-      std::vector<std::size_t> loose(spec.bodies.size(), 0);
+      std::vector<std::uint64_t> loose(spec.bodies.size(), 0);
       for (std::size_t i = 0; i < s.particles.size(); ++i) {
-        if (s.particles.role[i] != Role::Fluid) continue;
+        if (s.particles.role[i] != Role::Fluid || in_margin(i)) continue;
         Eigen::Vector3d x = Eigen::Vector3d::Zero();
         x.template head<D>() = s.particles.pos[i];
         bool in_one = false;
@@ -441,6 +662,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
         }
         if (!in_one) ++loose[s.particles.body[i]];
       }
+      red.sum(loose);
       for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
         if (loose[b] == 0) continue;
         s.warnings.push_back("warning: " + std::to_string(loose[b]) + " of the " +
@@ -483,12 +705,18 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
   // fluid at the start, and for a body that moves while the settling phase damps its waves.
   for (const DampingSpec& ds : spec.damping) s.damping.push_back(ds.zone);
   s.settling = spec.settling;
+  std::vector<double> wet_zone;
   for (const DampingSpec& ds : spec.damping) {
     const DampingGeometry g = damping_geometry(ds.zone, D);
     bool wet = false;
     for (std::size_t i = 0; i < s.particles.size() && !wet; ++i)
       wet = s.particles.role[i] == Role::Fluid && damping_depth<D>(g, s.particles.pos[i]) >= 0.0;
-    if (!wet)
+    wet_zone.push_back(wet ? 1.0 : 0.0);
+  }
+  red.max(wet_zone);
+  for (std::size_t z = 0; z < spec.damping.size(); ++z) {
+    const DampingSpec& ds = spec.damping[z];
+    if (wet_zone[z] == 0.0)
       s.warnings.push_back("warning: damping zone '" + ds.zone.name + "' (line " +
                            std::to_string(ds.line) +
                            ") holds no fluid at the start; check its position and direction");
@@ -505,7 +733,36 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
     }
   }
 
-  initialise_hydrostatic(s.particles, p);
+  if (!distributed) {
+    initialise_hydrostatic(s.particles, p);
+  } else {
+    // The whole case's levels and box, then this rank's share without its margin.
+    HydrostaticFrame<D> frame;
+    frame.lo = lo;
+    frame.hi = hi;
+    if (gnorm > 0.0) {
+      const auto mine = fluid_levels(s.particles, up, p.dp);
+      std::vector<double> level(spec.bodies.size(), -std::numeric_limits<double>::infinity());
+      for (const auto& [b, z] : mine) level[b] = z;
+      red.max(level);
+      for (std::size_t b = 0; b < level.size(); ++b)
+        if (std::isfinite(level[b])) frame.level[static_cast<std::uint16_t>(b)] = level[b];
+    }
+    initialise_hydrostatic(s.particles, p, &frame);
+    std::size_t kept = 0;
+    std::vector<std::uint8_t> keep(s.particles.size());
+    for (std::size_t i = 0; i < s.particles.size(); ++i) keep[i] = !in_margin(i);
+    s.particles.for_each_field([&](const FieldInfo& f, auto& a) {
+      if (!s.particles.enabled(f)) return;
+      std::size_t w = 0;
+      for (std::size_t i = 0; i < keep.size(); ++i)
+        if (keep[i]) a[w++] = a[i];
+      a.resize(w);
+      kept = w;
+    });
+    s.particles.n_active = kept;
+    s.distributed = true;
+  }
 
   // The hydrostatic start must lie inside the density bounds: a fluid particle outside them
   // would be deleted at the first step (with coefsound: 1, a fifth of the water at once).
@@ -521,15 +778,37 @@ CaseSetup<D> setup_case(const CaseSpec& spec) {
       const double r = std::max(rho / p.rho0, p.rho0 / rho);
       if (!(r <= worst_ratio)) worst_ratio = r, worst = i;
     }
+    // The worst particle: [rho / rho0, id, body, position] from the rank that holds it.
+    std::vector<double> named(3 + D, 0.0);
+    if (count > 0) {
+      named[0] = s.particles.rho[worst] / p.rho0;
+      named[1] = s.particles.id[worst];
+      named[2] = s.particles.body[worst];
+      for (int d = 0; d < D; ++d) named[3 + d] = s.particles.pos[worst][d];
+    }
+    if (distributed) {
+      std::vector<std::uint64_t> n{count};
+      red.sum(n);
+      if (n[0] > 0) {
+        std::vector<double> top{count > 0 ? worst_ratio : 0.0};
+        red.max(top);
+        // The lowest rank with the worst ratio names its particle.
+        std::vector<double> holder{count > 0 && worst_ratio == top[0] ? -red.rank() : -1e9};
+        red.max(holder);
+        if (-holder[0] != red.rank()) named.assign(named.size(), 0.0);
+        red.sum(named);
+      }
+      count = n[0];
+    }
     if (count > 0) {
       Eigen::Vector3d x = Eigen::Vector3d::Zero();
-      x.template head<D>() = s.particles.pos[worst];
+      for (int d = 0; d < D; ++d) x[d] = named[3 + d];
       std::ostringstream m;
       m << std::setprecision(4) << "the initial hydrostatic density of " << count
         << " fluid particles lies outside physics.density_bounds [" << p.rho_min_factor << ", "
-        << p.rho_max_factor << "] rho0 (up to " << s.particles.rho[worst] / p.rho0
-        << " rho0, particle " << s.particles.id[worst] << " of body '"
-        << spec.bodies[s.particles.body[worst]].name << "' at " << point_text(x, D)
+        << p.rho_max_factor << "] rho0 (up to " << named[0] << " rho0, particle "
+        << static_cast<std::uint64_t>(named[1]) << " of body '"
+        << spec.bodies[static_cast<std::size_t>(named[2])].name << "' at " << point_text(x, D)
         << " m): with coefsound = " << spec.coefsound << ", c0 = " << p.c0
         << " m/s is too low for a water depth of " << s.hswl
         << " m. Raise physics.coefsound (DualSPHysics cases use 10-40) or widen "
@@ -593,7 +872,7 @@ template Simulation<3> make_simulation<3>(const CaseSetup<3>&, ParticleSet<3>,
                                           std::unique_ptr<Exchange<3>>);
 template double halo_width<2>(const SolverParams&, const ParticleSet<2>&);
 template double halo_width<3>(const SolverParams&, const ParticleSet<3>&);
-template CaseSetup<2> setup_case<2>(const CaseSpec&);
-template CaseSetup<3> setup_case<3>(const CaseSpec&);
+template CaseSetup<2> setup_case<2>(const CaseSpec&, const SetupReduce&);
+template CaseSetup<3> setup_case<3>(const CaseSpec&, const SetupReduce&);
 
 }  // namespace swell

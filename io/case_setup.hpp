@@ -19,6 +19,24 @@
 
 namespace swell {
 
+// How a set-up distributed over the ranks of a decomposed run (issue #16) combines what each
+// rank filled. The default is one process, where every call is the identity: `swell fill`,
+// `swell bench` and one-rank runs. apps/ passes one over parallel::Comm (io/ does not link the
+// MPI build). Every rank makes the same calls in the same order.
+struct SetupReduce {
+  virtual ~SetupReduce() = default;
+  virtual int rank() const { return 0; }
+  virtual int size() const { return 1; }
+  virtual int node_size() const { return 1; }  // ranks sharing this machine's memory
+  virtual void sum(std::vector<double>& v) const { (void)v; }
+  virtual void sum(std::vector<std::uint64_t>& v) const { (void)v; }
+  virtual void max(std::vector<double>& v) const { (void)v; }
+  // Element-wise sums over the lower ranks (rank 0: zeros).
+  virtual void exscan(std::vector<std::uint64_t>& v) const { v.assign(v.size(), 0); }
+  // The lowest rank's non-empty message, on every rank ("": none failed).
+  virtual std::string first_message(const std::string& mine) const { return mine; }
+};
+
 struct BodyCount {
   std::string name;
   bool fluid = true;
@@ -49,6 +67,12 @@ struct CaseSetup {
   // Per body (index = body id): 1 for a boundary body with DBC walls in a run whose wall
   // module is mDBC (bodies[].boundary), else 0.
   std::vector<std::uint8_t> dbc_bodies;
+  // A distributed set-up (several ranks): `particles` are this rank's share of the fill (ids as
+  // the whole case's), `bodies` and `fill` count the whole case, and `order_lo`/`order_hi` are
+  // the box of every particle, which the hydrostatic sort used: a rank that receives particles
+  // restores the whole set's order with it (apps/run_loop.cpp).
+  bool distributed = false;
+  Vec<D> order_lo = Vec<D>::Zero(), order_hi = Vec<D>::Zero();
 };
 
 // The memory a run of about `particles` particles needs (setup and time loop together), and
@@ -67,8 +91,12 @@ double resident_bytes();
 // more particles or memory than the machine (or limits.max_particles) allows, estimated before
 // the fill; fluid or walls outside an explicit domain; gauges outside the domain; an initial
 // hydrostatic density outside physics.density_bounds.
+// `red`: several ranks (a decomposed run) fill the lattice in shares along one axis, balanced
+// by the bodies' estimated counts, each with a margin of one kernel support; the checks and
+// the hydrostatic state read the reductions; each rank keeps its own share (the same
+// particles, ids, densities and order as the whole case's, split).
 template <int D>
-CaseSetup<D> setup_case(const CaseSpec& spec);
+CaseSetup<D> setup_case(const CaseSpec& spec, const SetupReduce& red = SetupReduce());
 
 // The simulation of a set-up case: its wall model (DBC or mDBC) and step hooks, in this order:
 // moving bodies (prescribe), shifting, damping zones, settling (all three after_integration).

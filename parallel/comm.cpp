@@ -112,6 +112,58 @@ void Comm::sum_in_place(std::vector<double>& v) const {
   (void)v;
 }
 
+void Comm::max_in_place(std::vector<double>& v) const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_ && !v.empty())
+    MPI_Allreduce(MPI_IN_PLACE, v.data(), static_cast<int>(v.size()), MPI_DOUBLE, MPI_MAX,
+                  MPI_COMM_WORLD);
+#endif
+  (void)v;
+}
+
+void Comm::exscan_in_place(std::vector<std::uint64_t>& v) const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_ && size_ > 1 && !v.empty()) {
+    std::vector<std::uint64_t> below(v.size(), 0);
+    MPI_Exscan(v.data(), below.data(), static_cast<int>(v.size()), MPI_UINT64_T, MPI_SUM,
+               MPI_COMM_WORLD);
+    if (rank_ == 0) below.assign(v.size(), 0);  // MPI leaves rank 0's result undefined
+    v.swap(below);
+    return;
+  }
+#endif
+  v.assign(v.size(), 0);
+}
+
+int Comm::node_size() const {
+#ifdef SWELL_HAVE_MPI
+  if (mpi_ && size_ > 1) {
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+    int n = 1;
+    MPI_Comm_size(node, &n);
+    MPI_Comm_free(&node);
+    return n;
+  }
+#endif
+  return 1;
+}
+
+std::string Comm::first_message(const std::string& mine) const {
+  if (!mpi_ || size_ == 1) return mine;
+  std::string out;
+#ifdef SWELL_HAVE_MPI
+  const auto lengths = gather_all(static_cast<std::uint64_t>(mine.size()));
+  int from = -1;
+  for (int r = 0; r < size_ && from < 0; ++r)
+    if (lengths[static_cast<std::size_t>(r)] > 0) from = r;
+  if (from < 0) return out;
+  out = rank_ == from ? mine : std::string(lengths[static_cast<std::size_t>(from)], ' ');
+  MPI_Bcast(out.data(), static_cast<int>(out.size()), MPI_CHAR, from, MPI_COMM_WORLD);
+#endif
+  return out;
+}
+
 std::vector<std::uint64_t> Comm::gather_all(std::uint64_t x) const {
   std::vector<std::uint64_t> all;
   gather_all(x, all);

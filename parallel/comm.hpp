@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace swell::parallel {
@@ -31,6 +32,15 @@ class Comm {
   // Element-wise sum over ranks of a vector of counts (same length everywhere).
   void sum_in_place(std::vector<std::uint64_t>& v) const;
   void sum_in_place(std::vector<double>& v) const;
+  // Element-wise maximum over ranks, in place.
+  void max_in_place(std::vector<double>& v) const;
+  // Element-wise sum over the ranks below this one (rank 0 gets zeros), in place.
+  void exscan_in_place(std::vector<std::uint64_t>& v) const;
+  // The ranks on this rank's node (sharing its memory), this one included.
+  int node_size() const;
+  // The message of the lowest rank whose `mine` is not empty, on every rank ("" if none): an
+  // agreement on whether a local step failed anywhere, with the reason.
+  std::string first_message(const std::string& mine) const;
   // Every rank's value, in rank order.
   std::vector<std::uint64_t> gather_all(std::uint64_t x) const;
   void gather_all(std::uint64_t x, std::vector<std::uint64_t>& all) const;  // into `all`

@@ -260,6 +260,74 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
   buf.received = arriving;
 }
 
+// Sends every particle of `ps` to the rank whose slab holds it, for a set-up distributed over
+// the ranks (apps/run_loop.cpp): no particle is excluded yet, there are no images, and the
+// order does not matter (the caller sorts). The records travel in rounds of at most `chunk`
+// bytes per rank (MPI counts are ints), the staying particles are compacted in place (no
+// scratch the size of the set) and the arrivals appended; the extra memory is that of the
+// particles that move. Returns how many left this rank.
+template <int D>
+std::size_t redistribute(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm,
+                         std::size_t chunk = std::size_t{256} << 20) {
+  if (ps.n_ghost != 0 || ps.size() != ps.total())
+    throw std::logic_error("redistribute: a set with excluded particles or images");
+  const int me = comm.rank(), n = comm.size();
+  const std::size_t rec = record_bytes(ps), n0 = ps.size();
+  std::vector<int> dest(n0);
+  std::vector<std::uint32_t> leaving;
+  for (std::size_t i = 0; i < n0; ++i) {
+    const double x = ps.pos[i][slabs.axis];
+    dest[i] = std::isfinite(x) ? slabs.owner(x) : me;
+    if (dest[i] != me) leaving.push_back(static_cast<std::uint32_t>(i));
+  }
+  const std::size_t per_round = std::max<std::size_t>(1, chunk / std::max<std::size_t>(rec, 1));
+  const auto rounds = static_cast<long>(
+      comm.max(static_cast<double>((leaving.size() + per_round - 1) / per_round)));
+  std::vector<std::byte> send, recv, arrived;
+  std::vector<int> send_count, recv_count, recv_displ;
+  std::vector<std::size_t> cursor(static_cast<std::size_t>(n));
+  for (long round = 0; round < rounds; ++round) {
+    const std::size_t first = std::min(leaving.size(), static_cast<std::size_t>(round) * per_round);
+    const std::size_t last = std::min(leaving.size(), first + per_round);
+    send_count.assign(static_cast<std::size_t>(n), 0);
+    for (std::size_t k = first; k < last; ++k)
+      send_count[static_cast<std::size_t>(dest[leaving[k]])] += static_cast<int>(rec);
+    std::size_t off = 0;
+    for (int r = 0; r < n; ++r) {
+      cursor[static_cast<std::size_t>(r)] = off;
+      off += static_cast<std::size_t>(send_count[static_cast<std::size_t>(r)]);
+    }
+    send.resize(off);
+    for (std::size_t k = first; k < last; ++k) {
+      auto& c = cursor[static_cast<std::size_t>(dest[leaving[k]])];
+      pack(ps, leaving[k], send.data() + c);
+      c += rec;
+    }
+    comm.alltoallv(send, send_count, recv, recv_count, recv_displ);
+    for (int r = 0; r < n; ++r) {
+      const auto bytes = static_cast<std::size_t>(recv_count[static_cast<std::size_t>(r)]);
+      if (bytes % rec != 0)
+        throw std::runtime_error("redistribute: rank " + std::to_string(r) +
+                                 " sent records of another size (its optional fields differ)");
+      const std::byte* in = recv.data() + recv_displ[static_cast<std::size_t>(r)];
+      arrived.insert(arrived.end(), in, in + bytes);
+    }
+  }
+  std::vector<std::byte>().swap(send);
+  std::vector<std::byte>().swap(recv);
+  const std::size_t kept = n0 - leaving.size(), arriving = arrived.size() / rec;
+  ps.for_each_field([&](const FieldInfo& f, auto& a) {
+    if (!ps.enabled(f)) return;
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < n0; ++i)
+      if (dest[i] == me) a[w++] = a[i];
+    a.resize(kept + arriving);
+  });
+  for (std::size_t k = 0; k < arriving; ++k) unpack(ps, kept + k, arrived.data() + k * rec);
+  ps.n_active = kept + arriving;
+  return leaving.size();
+}
+
 // An empty set with the same optional fields enabled as `like`.
 template <int D>
 ParticleSet<D> empty_like(const ParticleSet<D>& like) {

@@ -125,6 +125,8 @@ def pieces(run):
 # Every rank's own rows against rank 0's gather; the gauges from the particles within their
 # reach against the whole state (the face sensor averages every step).
 same_files("r2", "r2g")
+# The set-up distributed over the ranks against the whole case set up on every rank.
+same_files("r2", "r2w")
 pieces("r2")
 compare("r1", "r2", exact=False)
 compare("r2", "re2", exact=True)

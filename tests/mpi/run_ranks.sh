@@ -13,6 +13,8 @@
 #     gauges from the particles within their reach) against rank 0 writing everything from a
 #     whole gather (SWELL_GATHER_OUTPUT=1): the same data and gauge files, bit for bit, and the
 #     .pvtp files list every rank's piece.
+#   - the set-up distributed over the ranks (each fills its share) against every rank setting
+#     up the whole case (SWELL_WHOLE_SETUP=1): the same files and gauges, bit for bit.
 # Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
 #   - mDBC on 1 and 2 ranks (to 0.02 s);
 #   - the regular-wave flume with an absorbing piston (FLUME, 0.1 s, fixed dt) on 1 and 2
@@ -36,6 +38,7 @@ run() {  # ranks, then swell run arguments
 run 1 -o r1 --set time.end=0.06 > r1.log
 run 2 -o r2 --set time.end=0.06 > r2.log
 SWELL_GATHER_OUTPUT=1 run 2 -o r2g --set time.end=0.06 > r2g.log
+SWELL_WHOLE_SETUP=1 run 2 -o r2w --set time.end=0.06 > r2w.log
 run 2 -o half --set time.end=0.03 > half.log
 for n in 1 2 3; do
   cp -r half "re$n"

@@ -13,11 +13,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <vector>
 
+#include "apps/rank_setup.hpp"
 #include "io/case_file.hpp"
 #include "io/case_setup.hpp"
 #include "parallel/comm.hpp"
@@ -204,6 +206,96 @@ TEST(MpiSimulation, RunsAreDeterministicForAGivenRankCount) {
 // (Checked: with the exchange of normals switched off the test fails, 5.5e-7 dp on 2 ranks.)
 TEST(MpiSimulation, ShiftingDamBreakMatchesOneRankWithAFixedStep) {
   expect_fixed_step_match("physics.shifting={model: fickian}", "DBC + shifting, fixed dt");
+}
+
+// The set-up distributed over the ranks (each fills its share of the lattice with a margin,
+// apps/rank_setup.hpp) against the whole case set up on this rank alone: every particle of the
+// whole set exactly once over the ranks, each bit for bit the whole set's record (id,
+// position, velocity, density and their integrator copies, mass, role, body, and the mDBC
+// normal and moving bodies' reference position where enabled), each rank's in the whole set's
+// relative order; the same counts, parameters, domain, levels and sort box.
+template <int D>
+void expect_distributed_setup(const std::string& file, const std::vector<std::string>& sets) {
+  const Comm comm = Comm::world();
+  const CaseSpec spec = load_case_file(file, sets);
+  const CaseSetup<D> whole = setup_case<D>(spec);
+  const CaseSetup<D> mine = setup_case<D>(spec, RankSetupReduce(comm));
+  EXPECT_EQ(mine.distributed, comm.size() > 1);
+  const ParticleSet<D>& w = whole.particles;
+  const ParticleSet<D>& m = mine.particles;
+  ASSERT_EQ(record_bytes(w), record_bytes(m)) << "the same fields enabled";
+  std::vector<std::size_t> at(w.size(), w.size());
+  for (std::size_t j = 0; j < w.size(); ++j) at[w.id[j]] = j;
+  std::vector<std::uint64_t> seen(w.size(), 0);
+  const std::size_t rec = record_bytes(w);
+  std::vector<std::byte> a(rec), b(rec);
+  std::size_t differ = 0, out_of_order = 0, last = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    ASSERT_LT(m.id[i], w.size()) << "id " << m.id[i];
+    const std::size_t j = at[m.id[i]];
+    ++seen[m.id[i]];
+    pack(m, i, a.data());
+    pack(w, j, b.data());
+    differ += std::memcmp(a.data(), b.data(), rec) != 0;
+    out_of_order += i > 0 && j <= last;
+    last = j;
+  }
+  comm.sum_in_place(seen);
+  const auto once = std::count(seen.begin(), seen.end(), std::uint64_t{1});
+  EXPECT_EQ(static_cast<std::size_t>(once), w.size()) << "particles held exactly once";
+  EXPECT_EQ(comm.sum(static_cast<std::uint64_t>(differ)), 0u) << "records differing";
+  EXPECT_EQ(comm.sum(static_cast<std::uint64_t>(out_of_order)), 0u) << "out of the whole order";
+  ASSERT_EQ(mine.bodies.size(), whole.bodies.size());
+  for (std::size_t k = 0; k < whole.bodies.size(); ++k) {
+    EXPECT_EQ(mine.bodies[k].particles, whole.bodies[k].particles) << whole.bodies[k].name;
+    EXPECT_EQ(mine.fill[k].particles, whole.fill[k].particles) << whole.bodies[k].name;
+    EXPECT_EQ(mine.fill[k].in_region, whole.fill[k].in_region) << whole.bodies[k].name;
+  }
+  EXPECT_EQ(mine.params.c0, whole.params.c0);
+  EXPECT_EQ(mine.params.domain_min, whole.params.domain_min);
+  EXPECT_EQ(mine.params.domain_max, whole.params.domain_max);
+  EXPECT_EQ(mine.hswl, whole.hswl);
+  EXPECT_EQ(mine.floor, whole.floor);
+  EXPECT_EQ(mine.warnings, whole.warnings);
+  std::cout << "  distributed set-up (" << file.substr(file.rfind('/') + 1) << "): " << m.size()
+            << " of " << w.size() << " particles on rank " << comm.rank() << "\n";
+}
+
+TEST(MpiSetup, DamBreakSetUpInSharesIsTheWholeCaseSplit) {
+  expect_distributed_setup<2>(SWELL_SOURCE_DIR "/cases/dambreak2d.yaml", {"dp=0.0028575"});
+}
+
+// Shares across the rows (along y), and a second fluid body that the first one's points cut
+// (the fill's `taken` points near the share faces).
+TEST(MpiSetup, TallTankWithTwoFluidsSetUpInSharesAlongY) {
+  expect_distributed_setup<2>(
+      SWELL_SOURCE_DIR "/cases/dambreak2d.yaml",
+      {"dp=0.0028575", "bodies.0.shape.box.max=[0.1, 0.6]", "bodies.1.shape.box.max=[0.1, 0.4]",
+       "bodies.2={name: oil, kind: fluid, shape: {box: {min: [0, 0.3], max: [0.05, 0.5]}}}",
+       "gauges=[]"});
+}
+
+// Two equal pools either side of a wall: the shares meet at the wall, whose particles see fluid
+// only across the cut (their hydrostatic densities need the fill's margin).
+TEST(MpiSetup, WallBetweenTwoPoolsNeedsTheMargin) {
+  expect_distributed_setup<2>(
+      SWELL_SOURCE_DIR "/cases/dambreak2d.yaml",
+      {"dp=0.005", "bodies.0.shape.box.max=[1.02, 0.3]", "bodies.1.shape.box.max=[0.5, 0.2]",
+       "bodies.2={name: wall, kind: boundary, walls: outside, layers: 3, "
+       "shape: {box: {min: [0.5, 0], max: [0.52, 0.3]}}}",
+       "bodies.3={name: pool, kind: fluid, shape: {box: {min: [0.52, 0], max: [1.02, 0.2]}}}",
+       "gauges=[]"});
+}
+
+// 3D with mDBC walls (normals from the geometry) and a structure.
+TEST(MpiSetup, MdbcDamBreak3DSetUpInShares) {
+  expect_distributed_setup<3>(SWELL_SOURCE_DIR "/cases/dambreak3d.yaml",
+                              {"dp=0.02", "physics.boundary.model=mdbc"});
+}
+
+// A moving paddle (reference positions, placed at t = 0) and a damping zone.
+TEST(MpiSetup, WaveFlumeSetUpInShares) {
+  expect_distributed_setup<2>(SWELL_SOURCE_DIR "/cases/wave_flume_regular2d.yaml", {});
 }
 
 }  // namespace
