@@ -407,7 +407,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec, const SetupReduce& red) {
         }
         std::vector<Eigen::Vector3d> n;
         try {
-          n = geometry::wall_normals(geo[b], fb.points, fo);
+          n = geometry::wall_normals(geo[b], fb.points, fo, &geo);
         } catch (const std::invalid_argument& e) {
           throw CaseError(spec.file, spec.bodies[b].line, e.what());
         }

@@ -19,6 +19,7 @@
 #include "geometry/primitives.hpp"
 #include "geometry/wall_normals.hpp"
 #include "io/case_file.hpp"
+#include "io/case_geometry.hpp"
 #include "io/case_setup.hpp"
 #include "io/hdf5_file.hpp"
 #include "solver/diagnostics.hpp"
@@ -206,6 +207,58 @@ TEST(WallNormals, TankNormalsPointToTheWallSurface) {
   EXPECT_EQ(floor, 1);
   EXPECT_EQ(corner, 1);
   EXPECT_EQ(deep, 1);
+}
+
+// A ramp resting on a tank's floor (a beach): at its toe the ramp's nearest surface is its
+// bottom face, which the water never reaches (it lies on the floor). Those wall particles get
+// the vector to the wetted slope instead: every wall particle with water within one support
+// mirrors into the fluid region, and the toe's normals are perpendicular to the slope with the
+// distance to it as their length. (Before, 16 such particles at the toe had ghosts in the
+// floor, read dry and held zero pressure next to 2.9 kPa of water.)
+TEST(WallNormals, RampOnTheFloorMirrorsIntoTheWaterAtItsToe) {
+  const double dp = 0.01;
+  const std::string text =
+      "dim: 2\ndp: 0.01\ntime: {end: 0.1}\nphysics: {boundary: {model: mdbc}}\nbodies:\n"
+      "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [2, 0.5]}}, layers: 3,"
+      " open: [ymax]}\n"
+      "  - {name: ramp, kind: boundary, walls: outside, layers: 2,"
+      " shape: {polygon: {points: [[0.5, 0], [1.5, 0.2], [2, 0.2], [2, 0]]}}}\n"
+      "  - {name: water, kind: fluid, fill: {below: 0.3, inside: tank}}\n";
+  const CaseSpec spec = parse_case_text(text, "ramp.yaml");
+  const CaseSetup<2> s = setup_case<2>(spec);
+  const auto& ps = s.particles;
+  const auto geo = case_geometry(spec, nullptr);
+  const geometry::FluidRegion region(geo, 2);
+  const double support = kernel_support_factor(s.params.kernel) * s.params.h;
+  // The slope: y = 0.2 (x - 0.5), unit normal into the water (-0.2, 1) / |.|.
+  const Vector3d up = Vector3d(-0.2, 1.0, 0.0).normalized();
+  int wet = 0, outside = 0, toe = 0;
+  for (std::size_t i = 0; i < ps.total(); ++i) {
+    if (ps.role[i] == Role::Fluid) continue;
+    bool near_water = false;
+    for (std::size_t j = 0; j < ps.total() && !near_water; ++j)
+      near_water = ps.role[j] == Role::Fluid && (ps.pos[j] - ps.pos[i]).norm() < support;
+    if (!near_water) continue;
+    ++wet;
+    const Vector3d x(ps.pos[i].x(), ps.pos[i].y(), 0.0), n(ps.normal[i].x(), ps.normal[i].y(), 0);
+    // (A lattice point on the surface itself is its own ghost: n = 0.)
+    if (n.norm() > 1e-6 * dp && !region.contains(x + 2.0 * n, 1e-6 * dp)) {
+      ++outside;
+      ADD_FAILURE() << "ghost of the wall particle at (" << x.x() << ", " << x.y()
+                    << ") lies outside the water";
+    }
+    // The ramp's toe: closer to the bottom face than to the slope.
+    if (ps.body[i] == 1 && x.x() > 0.5 && x.x() < 0.7 && x.y() < 0.5 * dp + 1e-9) {
+      const double to_slope = (0.2 * (x.x() - 0.5) - x.y()) / std::sqrt(1.04);
+      if (to_slope <= x.y()) continue;  // its nearest face is the slope anyway
+      ++toe;
+      EXPECT_NEAR(n.norm(), to_slope, 1e-3 * dp) << "at x = " << x.x();
+      EXPECT_GT(n.normalized().dot(up), std::cos(0.5 * M_PI / 180.0)) << "at x = " << x.x();
+    }
+  }
+  EXPECT_GT(wet, 300);
+  EXPECT_EQ(outside, 0);
+  EXPECT_GT(toe, 3);
 }
 
 TEST(WallNormals, PointsBeyondTheWallLayersAreAnError) {
