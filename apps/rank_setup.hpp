@@ -34,8 +34,9 @@ class RankSetupReduce final : public SetupReduce {
 };
 
 // This rank's set-up (collective on several ranks: each fills its share of the case, see
-// setup_case). SWELL_WHOLE_SETUP=1 on any rank: every rank sets up the whole case, as before
-// the distributed set-up (the tests compare the two, bit for bit).
+// setup_case). SWELL_WHOLE_SETUP=1 on any rank: every rank sets up the whole case (and a
+// restart then reads the whole checkpoint on every rank: CaseSetup::distributed is false), as
+// before the distributed set-up (the tests compare the two, bit for bit).
 template <int D>
 inline CaseSetup<D> rank_setup(const CaseSpec& spec, const parallel::Comm& comm) {
   if (comm.size() == 1) return setup_case<D>(spec);

@@ -363,21 +363,53 @@ std::optional<WriteShare> restart_rows(const std::map<std::string, double>& save
   return w;
 }
 
+// How this rank reads a checkpoint at a restart: on as many ranks as wrote it, its own rows
+// (restart_rows); on another number of ranks after a set-up in shares, a block of the active
+// rows (rank 0 also every excluded row), whose particles then go to their slabs
+// (build_simulation); otherwise (one rank, SWELL_WHOLE_SETUP=1) the whole file. No
+// collective: every rank decides alike from the same file and set-up.
+struct RestartRead {
+  std::optional<WriteShare> rows;
+  bool blocks = false;
+  std::uint64_t first_row = 0;  // blocks: the file row of this rank's first active particle
+};
+
+RestartRead restart_read(const std::string& ck, const parallel::Comm& comm, bool distributed) {
+  RestartRead r;
+  r.rows = restart_rows(read_checkpoint_schedule(ck), comm);
+  if (r.rows || comm.size() == 1 || !distributed) return r;
+  const auto [active, total] = checkpoint_counts(ck);
+  const auto n = static_cast<std::uint64_t>(comm.size());
+  WriteShare w;
+  w.rank = comm.rank();
+  for (std::uint64_t k = 0; k < n; ++k) {
+    const std::uint64_t a = active * k / n, b = active * (k + 1) / n;
+    if (static_cast<int>(k) == comm.rank()) r.first_row = a;
+    w.active.push_back(b - a);
+    w.excluded.push_back(k == 0 ? total - active : 0);
+  }
+  r.rows = w;
+  r.blocks = true;
+  return r;
+}
+
 // This rank's simulation. One rank: the case's, as always. Several: this rank's slab of the
 // particles (`all`: the set-up's or a checkpoint's) with a SlabExchange. A checkpoint written
 // on the same number of ranks (`saved` has its decomposition) gives each rank back exactly the
 // particles it held, in their order, and the slab bounds; otherwise the slabs are balanced by
 // fluid particle count along the domain's longest axis.
-// `mine_already`: `all` holds just this rank's particles (read with restart_rows).
+// `read`: how a restart read the checkpoint (`all` is then this rank's rows or block).
 template <int D>
 Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
                                const std::map<std::string, double>* saved,
                                const parallel::Comm& comm, long rebalance_every,
-                               bool mine_already = false) {
+                               const RestartRead* read = nullptr) {
   if (comm.size() == 1) return make_simulation<D>(setup, std::move(all));
+  const bool mine_already = read && read->rows && !read->blocks;
+  const bool blocks = read && read->blocks;
   // `all`: setup.particles may be moved. (The halo width is a reduction over the ranks where
   // each holds only its own particles.)
-  const double width = mine_already || (setup.distributed && !saved)
+  const double width = mine_already || blocks || (setup.distributed && !saved)
                            ? comm.max(halo_width(setup.params, all))
                            : halo_width(setup.params, all);
   const SolverParams& pr = setup.params;
@@ -403,6 +435,18 @@ Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
           static_cast<std::uint64_t>(get("decomposition.excluded." + std::to_string(r))));
     }
     mine = mine_already ? std::move(all) : parallel::share_by_layout(all, layout, comm.rank());
+  } else if (blocks) {
+    // A block of the checkpoint's rows on each rank (another number of ranks than wrote it):
+    // the slabs from the histogram over every rank, the particles to their slab's rank with
+    // their file rows, which restore the file's order: the share a whole read would give.
+    const int axis = parallel::longest_axis<D>(pr.domain_min.template head<D>(),
+                                               pr.domain_max.template head<D>());
+    slabs = parallel::balanced_slabs(all, axis, pr.domain_min[axis], pr.domain_max[axis], width,
+                                     comm, 4096, 0, true);
+    std::vector<std::uint64_t> row(all.size());
+    std::iota(row.begin(), row.end(), read->first_row);
+    parallel::redistribute(all, slabs, comm, &row);
+    mine = std::move(all);
   } else if (setup.distributed && !saved) {
     // Each rank holds its share of a distributed set-up: the same slabs from the histogram
     // over every rank, then the particles travel to their slab's rank and each rank restores
@@ -520,10 +564,10 @@ RunSummary run_worker(const CaseSpec& spec, const RunOptions& opt, const paralle
   if (opt.restart) {
     setup.particles = ParticleSet<D>();  // the checkpoint's particles replace the set-up's
     const std::string ck = latest_valid_checkpoint((out / "checkpoint.h5").string());
-    const auto rows = restart_rows(read_checkpoint_schedule(ck), comm);
-    Checkpoint<D> c = read_checkpoint<D>(ck, rows ? &*rows : nullptr);
+    const RestartRead read = restart_read(ck, comm, setup.distributed);
+    Checkpoint<D> c = read_checkpoint<D>(ck, read.rows ? &*read.rows : nullptr);
     sim.emplace(build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm,
-                                    opt.rebalance_every, rows.has_value()));
+                                    opt.rebalance_every, &read));
     SimulationClock clock = c.clock;
     clock.excluded = {};  // rank 0 carries the run's counts
     sim->restore(clock);
@@ -750,7 +794,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
     // The checkpoint's particles replace the set-up's; on as many ranks as wrote it, each rank
     // reads only its own rows.
     setup.particles = ParticleSet<D>();
-    const auto rows = restart_rows(read_checkpoint_schedule(ck), comm);
+    const RestartRead read = restart_read(ck, comm, setup.distributed);
+    const auto& rows = read.rows;
     Checkpoint<D> c = read_checkpoint<D>(ck, rows ? &*rows : nullptr);
     std::uint64_t in_file = c.particles.total();
     if (rows) {
@@ -764,7 +809,7 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
                                   ": restart needs the case the run was started with");
     proto.agree();  // the other ranks read the checkpoint now
     sim.emplace(build_simulation<D>(setup, std::move(c.particles), &c.schedule, comm,
-                                    opt.rebalance_every, rows.has_value()));
+                                    opt.rebalance_every, &read));
     sim->restore(c.clock);
     sim->restore_hooks(c.schedule);
     check_checkpoint_case(ck, c.tag, tag, spec.file);  // every rank, alike

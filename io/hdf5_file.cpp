@@ -915,6 +915,13 @@ int checkpoint_dimension(const std::string& path) {
   return read_attr<std::int32_t>(Loc{f.get(), path, "/"}, "dim");
 }
 
+std::pair<std::uint64_t, std::uint64_t> checkpoint_counts(const std::string& path) {
+  QuietErrors quiet;
+  Handle f = open_file(path, H5F_ACC_RDONLY);
+  const Loc root{f.get(), path, "/"};
+  return {read_attr<std::uint64_t>(root, "n_active"), read_attr<std::uint64_t>(root, "total")};
+}
+
 std::string latest_valid_checkpoint(const std::string& path) {
   // A full read: HDF5 keeps no checksum of the data, so a partial check could miss damage.
   // One dataset at a time: the check never holds the whole particle set.

@@ -210,6 +210,9 @@ std::map<std::string, double> read_checkpoint_schedule(const std::string& path);
 // The dimension (2 or 3) of the run saved in a checkpoint.
 int checkpoint_dimension(const std::string& path);
 
+// A checkpoint's particle counts: active (the first rows) and all.
+std::pair<std::uint64_t, std::uint64_t> checkpoint_counts(const std::string& path);
+
 // `path` if it reads back completely, else path + ".prev" if that does; throws otherwise
 // (the message names both files and why each was rejected). Reads one dataset at a time.
 std::string latest_valid_checkpoint(const std::string& path);

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -260,19 +261,24 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
   buf.received = arriving;
 }
 
-// Sends every particle of `ps` to the rank whose slab holds it, for a set-up distributed over
-// the ranks (apps/run_loop.cpp): no particle is excluded yet, there are no images, and the
-// order does not matter (the caller sorts). The records travel in rounds of at most `chunk`
-// bytes per rank (MPI counts are ints), the staying particles are compacted in place (no
-// scratch the size of the set) and the arrivals appended; the extra memory is that of the
-// particles that move. Returns how many left this rank.
+// Sends every active particle of `ps` to the rank whose slab holds it: a set-up distributed
+// over the ranks, or a checkpoint read in blocks of rows (apps/run_loop.cpp). The records
+// travel in rounds of at most `chunk` bytes per rank (MPI counts are ints); the staying
+// particles are compacted in place (no scratch the size of the set) and the arrivals appended,
+// the excluded particles (kept for the record) staying last. With `keys` (one per active
+// particle; e.g. the row it came from) the keys travel along and the active particles end
+// sorted by them (`keys` too); otherwise staying ones come first, then arrivals by sender. The
+// extra memory is that of the particles that move. There must be no images. Returns how many
+// left this rank.
 template <int D>
 std::size_t redistribute(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm,
+                         std::vector<std::uint64_t>* keys = nullptr,
                          std::size_t chunk = std::size_t{256} << 20) {
-  if (ps.n_ghost != 0 || ps.size() != ps.total())
-    throw std::logic_error("redistribute: a set with excluded particles or images");
+  if (ps.n_ghost != 0) throw std::logic_error("redistribute: drop the images first");
   const int me = comm.rank(), n = comm.size();
-  const std::size_t rec = record_bytes(ps), n0 = ps.size();
+  const std::size_t rec = record_bytes(ps), n0 = ps.size(), total = ps.total();
+  const std::size_t krec = keys ? sizeof(std::uint64_t) : 0, full = rec + krec;
+  if (keys && keys->size() != n0) throw std::invalid_argument("redistribute: one key per particle");
   std::vector<int> dest(n0);
   std::vector<std::uint32_t> leaving;
   for (std::size_t i = 0; i < n0; ++i) {
@@ -280,7 +286,7 @@ std::size_t redistribute(ParticleSet<D>& ps, const Slabs& slabs, const Comm& com
     dest[i] = std::isfinite(x) ? slabs.owner(x) : me;
     if (dest[i] != me) leaving.push_back(static_cast<std::uint32_t>(i));
   }
-  const std::size_t per_round = std::max<std::size_t>(1, chunk / std::max<std::size_t>(rec, 1));
+  const std::size_t per_round = std::max<std::size_t>(1, chunk / full);
   const auto rounds = static_cast<long>(
       comm.max(static_cast<double>((leaving.size() + per_round - 1) / per_round)));
   std::vector<std::byte> send, recv, arrived;
@@ -291,7 +297,7 @@ std::size_t redistribute(ParticleSet<D>& ps, const Slabs& slabs, const Comm& com
     const std::size_t last = std::min(leaving.size(), first + per_round);
     send_count.assign(static_cast<std::size_t>(n), 0);
     for (std::size_t k = first; k < last; ++k)
-      send_count[static_cast<std::size_t>(dest[leaving[k]])] += static_cast<int>(rec);
+      send_count[static_cast<std::size_t>(dest[leaving[k]])] += static_cast<int>(full);
     std::size_t off = 0;
     for (int r = 0; r < n; ++r) {
       cursor[static_cast<std::size_t>(r)] = off;
@@ -301,12 +307,13 @@ std::size_t redistribute(ParticleSet<D>& ps, const Slabs& slabs, const Comm& com
     for (std::size_t k = first; k < last; ++k) {
       auto& c = cursor[static_cast<std::size_t>(dest[leaving[k]])];
       pack(ps, leaving[k], send.data() + c);
-      c += rec;
+      if (keys) std::memcpy(send.data() + c + rec, &(*keys)[leaving[k]], krec);
+      c += full;
     }
     comm.alltoallv(send, send_count, recv, recv_count, recv_displ);
     for (int r = 0; r < n; ++r) {
       const auto bytes = static_cast<std::size_t>(recv_count[static_cast<std::size_t>(r)]);
-      if (bytes % rec != 0)
+      if (bytes % full != 0)
         throw std::runtime_error("redistribute: rank " + std::to_string(r) +
                                  " sent records of another size (its optional fields differ)");
       const std::byte* in = recv.data() + recv_displ[static_cast<std::size_t>(r)];
@@ -315,16 +322,39 @@ std::size_t redistribute(ParticleSet<D>& ps, const Slabs& slabs, const Comm& com
   }
   std::vector<std::byte>().swap(send);
   std::vector<std::byte>().swap(recv);
-  const std::size_t kept = n0 - leaving.size(), arriving = arrived.size() / rec;
+  const std::size_t kept = n0 - leaving.size(), arriving = arrived.size() / full;
+  const std::size_t excluded = total - n0;
   ps.for_each_field([&](const FieldInfo& f, auto& a) {
     if (!ps.enabled(f)) return;
     std::size_t w = 0;
     for (std::size_t i = 0; i < n0; ++i)
       if (dest[i] == me) a[w++] = a[i];
-    a.resize(kept + arriving);
+    for (std::size_t i = n0; i < total; ++i) a[w++] = a[i];  // the excluded block
+    a.resize(kept + arriving + excluded);
+    std::move_backward(a.begin() + static_cast<long>(kept),
+                       a.begin() + static_cast<long>(kept + excluded), a.end());
   });
-  for (std::size_t k = 0; k < arriving; ++k) unpack(ps, kept + k, arrived.data() + k * rec);
+  if (keys) {
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < n0; ++i)
+      if (dest[i] == me) (*keys)[w++] = (*keys)[i];
+    keys->resize(kept + arriving);
+  }
+  for (std::size_t k = 0; k < arriving; ++k) {
+    unpack(ps, kept + k, arrived.data() + k * full);
+    if (keys) std::memcpy(&(*keys)[kept + k], arrived.data() + k * full + rec, krec);
+  }
   ps.n_active = kept + arriving;
+  if (keys) {
+    std::vector<std::uint32_t> order(kept + arriving);
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return (*keys)[a] < (*keys)[b]; });
+    for (std::size_t i = kept + arriving; i < ps.total(); ++i)
+      order.push_back(static_cast<std::uint32_t>(i));
+    ps.permute_in_place(order);
+    std::sort(keys->begin(), keys->end());
+  }
   return leaving.size();
 }
 

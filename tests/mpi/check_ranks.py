@@ -127,6 +127,8 @@ def pieces(run):
 same_files("r2", "r2g")
 # The set-up distributed over the ranks against the whole case set up on every rank.
 same_files("r2", "r2w")
+# A restart on another rank count: blocks of rows on each rank against the whole file on each.
+same_files("re3", "re3w")
 pieces("r2")
 compare("r1", "r2", exact=False)
 compare("r2", "re2", exact=True)

@@ -14,7 +14,9 @@
 #     whole gather (SWELL_GATHER_OUTPUT=1): the same data and gauge files, bit for bit, and the
 #     .pvtp files list every rank's piece.
 #   - the set-up distributed over the ranks (each fills its share) against every rank setting
-#     up the whole case (SWELL_WHOLE_SETUP=1): the same files and gauges, bit for bit.
+#     up the whole case (SWELL_WHOLE_SETUP=1): the same files and gauges, bit for bit; and the
+#     restart on 3 ranks (each reads a block of rows) against every rank reading the whole
+#     checkpoint, likewise.
 # Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
 #   - mDBC on 1 and 2 ranks (to 0.02 s);
 #   - the regular-wave flume with an absorbing piston (FLUME, 0.1 s, fixed dt) on 1 and 2
@@ -44,6 +46,10 @@ for n in 1 2 3; do
   cp -r half "re$n"
   run "$n" --restart "re$n" --set time.end=0.06 > "re$n.log"
 done
+# On 3 ranks each reads a block of the 2-rank checkpoint's rows; against every rank reading
+# all of it (SWELL_WHOLE_SETUP=1): bit for bit.
+cp -r half re3w
+SWELL_WHOLE_SETUP=1 run 3 --restart re3w --set time.end=0.06 > re3w.log
 # Refused: the folder already holds a run (rank 0's check); its checkpoint stays as it was.
 sum0=$(md5sum r2/checkpoint.h5)
 rc=0; run 2 -o r2 --set time.end=0.06 > refused.log 2>&1 || rc=$?
