@@ -504,7 +504,7 @@ std::string decomposition_report(const Simulation<D>& sim, const parallel::Comm&
   const auto counts = comm.gather_all(sim.fluid_count());
   std::uint64_t lo = counts.front(), hi = counts.front(), total = 0;
   for (auto c : counts) lo = std::min(lo, c), hi = std::max(hi, c), total += c;
-  // Memory per rank: resident now and the peak (every rank sets up the whole case).
+  // Memory per rank: resident now and the peak (the set-up in shares, then the run).
   rusage use{};
   getrusage(RUSAGE_SELF, &use);
   const double now = resident_bytes() / 1048576.0, peak = use.ru_maxrss / 1024.0;
