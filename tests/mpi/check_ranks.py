@@ -136,6 +136,27 @@ compare("r2", "re1", exact=False)
 compare("r2", "re3", exact=False)
 compare("m1", "m2", exact=False)  # mDBC
 compare("a1", "a2", exact=False)  # absorbing piston on 2 ranks against 1
+compare("c1", "c2", exact=False)  # its measuring line on the slab face
+
+
+def schedule(run):
+    with h5py.File(os.path.join(work, run, "checkpoint.h5"), "r") as f:
+        names = [n.decode() if isinstance(n, bytes) else n for n in f["schedule/names"][()]]
+        return dict(zip(names, f["schedule/values"][()]))
+
+
+# The absorber's state (its correction's position, velocity, error) on 2 ranks against 1, and
+# the line really on the slab face (within one kernel support, 0.057 m).
+s1, s2 = schedule("c1"), schedule("c2")
+face = s2.get("decomposition.lo.1", float("nan"))
+print(f"c2: slab face at x = {face:.4f} m, measuring line at {0.14 + 6.19:.4f} m")
+if not abs(face - (0.14 + 6.19)) < 0.057:
+    failed.append(f"c2: the slab face ({face}) is not within one support of the measuring line")
+for k in sorted(k for k in s1 if ".awas." in k):
+    d = abs(s1[k] - s2.get(k, float("nan")))
+    print(f"c2 vs c1: {k}: {s1[k]:.12g} / {s2.get(k, float('nan')):.12g}")
+    if not d <= 1e-12 * max(abs(s1[k]), 1e-6):
+        failed.append(f"c2 vs c1: {k} differs by {d:.3g}")
 # Restart at a rebalance step: the half run must end on a multiple of the interval (50 steps).
 with h5py.File(os.path.join(work, "rb_half", "checkpoint.h5"), "r") as f:
     steps = int(f["clock"].attrs["steps"])

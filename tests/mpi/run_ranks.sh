@@ -20,7 +20,9 @@
 # Every run has a sensor face (averaged each interval: rank 0 gathers after every step).
 #   - mDBC on 1 and 2 ranks (to 0.02 s);
 #   - the regular-wave flume with an absorbing piston (FLUME, 0.1 s, fixed dt) on 1 and 2
-#     ranks: the paddle's water level is reduced over the ranks; the runs agree as above;
+#     ranks: the paddle's water level is reduced over the ranks; the runs agree as above; and
+#     again with the measuring line moved onto the slab face (both ranks' particles in its
+#     sums): the same runs, and the absorber's state in the checkpoints within 1e-12;
 #   - restart at the worst moment for the slabs: a 2-rank run (fixed dt, a rebalance every 50
 #     steps) checkpointed at step 250, so the restart's first evaluation rebalances; bit for
 #     bit the uninterrupted run (and check_ranks.py checks the checkpoint is at that step).
@@ -85,6 +87,11 @@ run 2 -o m2 --set time.end=0.02 --set physics.boundary.model=mdbc > m2.log
 fl="--set bodies.1.motion.absorption=true --set time.end=0.1 --set time.dt_fixed=2e-4"
 "$swell" run "$flume" -q -t 1 -o a1 $fl > a1.log
 "$mpirun" --oversubscribe -np 2 "$swell" run "$flume" -q -t 1 -o a2 $fl > a2.log
+# The absorber's measuring line across the slab face (2 ranks cut this flume at x = 6.33 m; the
+# line 6.19 m in front of the face at 0.14 m): its kernel sums come from both ranks.
+cut='bodies.1.motion.absorption={distance: 6.19}'
+"$swell" run "$flume" -q -t 1 -o c1 $fl --set "$cut" > c1.log
+"$mpirun" --oversubscribe -np 2 "$swell" run "$flume" -q -t 1 -o c2 $fl --set "$cut" > c2.log
 rb="--set time.dt_fixed=4e-5 --rebalance 50"
 run 2 -o rb_full $rb --set time.end=0.014 > rb_full.log
 run 2 -o rb_half $rb --set time.end=0.01 > rb_half.log
