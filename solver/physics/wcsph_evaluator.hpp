@@ -27,7 +27,10 @@ namespace swell {
 // computed in the loop as c0 (rho_b/rho0)^3, three multiplications instead of one more gather
 // per pair (gathers are the loop's most expensive instructions; this keeps B3D's speed). Any
 // other equation of state reads c from the buffer filled by compute_pressure.
-template <int D, class Kernel, ViscosityModel VM, class Select, bool kTait7 = false>
+// kOneMass: every particle (images included) has the same mass, read once instead of gathered
+// per pair (the same value, so the same results; a lattice fill makes every mass rho0 dp^D).
+template <int D, class Kernel, ViscosityModel VM, class Select, bool kTait7 = false,
+          bool kOneMass = false>
 class WcsphEvaluator {
  public:
   struct Centre {
@@ -52,6 +55,7 @@ class WcsphEvaluator {
         U_(ps.vel.data()->data()),
         rho_(ps.rho.data()),
         mass_(ps.mass.data()),
+        m0_(ps.mass.empty() ? 0.0 : ps.mass.front()),
         prs_(prs),
         cs_(cs),
         drho_(drho),
@@ -96,7 +100,7 @@ class WcsphEvaluator {
     const double grx = g_[0] * r0 + g_[1] * r1 + (D == 3 ? g_[D - 1] * r2c : 0.0);  // g . r_ab
     // gradW_ab = r_ab fr
     const double fr = kernel_.fs(std::sqrt(std::max(r2, 1e-18)));
-    const double m_b = mass_[b], rho_b = rho_[b];
+    const double m_b = kOneMass ? m0_ : mass_[b], rho_b = rho_[b];
     const double inv_r2e = 1.0 / (r2 + eta2_);
     const double r_dot_gradw = r2 * fr;
     drho += m_b * fr * vr;  // m_b v_ab . gradW_ab
@@ -145,7 +149,9 @@ class WcsphEvaluator {
   DensityDiffusion dd_;
   double eta2_, c0_, inv_rho0_;
   Vec<D> g_;
-  const double *P_, *U_, *rho_, *mass_, *prs_, *cs_;
+  const double *P_, *U_, *rho_, *mass_;
+  double m0_;
+  const double *prs_, *cs_;
   double* drho_;
   Vec<D>* ace_;
 };

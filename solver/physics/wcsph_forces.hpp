@@ -86,7 +86,14 @@ void compute_forces(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Sol
     auto run = [&](auto ev) {
       f.visc_dt_max = for_each_pair<D, Select>(ps, grid, kernel.support(), ev, f.neighbours);
     };
-    if (prm.viscosity == ViscosityModel::Artificial && tait7)
+    // One mass for every particle (the lattice fill's): a constant in the pair terms.
+    const std::size_t stored = ps.stored();
+    bool one_mass = stored > 0;
+    for (std::size_t i = 1; i < stored && one_mass; ++i) one_mass = ps.mass[i] == ps.mass[0];
+    if (prm.viscosity == ViscosityModel::Artificial && tait7 && one_mass)
+      run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select, true, true>(
+          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
+    else if (prm.viscosity == ViscosityModel::Artificial && tait7)
       run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select, true>(
           ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
     else if (prm.viscosity == ViscosityModel::Artificial)
