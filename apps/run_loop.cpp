@@ -452,7 +452,7 @@ Simulation<D> build_simulation(const CaseSetup<D>& setup, ParticleSet<D> all,
     // over every rank, then the particles travel to their slab's rank and each rank restores
     // the whole set's order (by id, then the set-up's stable cell sort): the share a whole-case
     // set-up would give it, in the same order.
-    const double w = comm.max(halo_width(setup.params, all));
+    const double w = width;  // already the maximum over the ranks
     const int axis = parallel::longest_axis<D>(pr.domain_min.template head<D>(),
                                                pr.domain_max.template head<D>());
     slabs = parallel::balanced_slabs(all, axis, pr.domain_min[axis], pr.domain_max[axis], w, comm,

@@ -73,7 +73,8 @@ class MovingBodies final : public StepHook<D> {
     }
     ps.enable("pos_ref", ps.pos);
     // mDBC normals turn with their body: keep them in the body frame too.
-    if (ps.normal.size() == ps.total()) ps.enable("normal_ref", ps.normal);
+    // (By the flag, not the size: a rank's share of a set-up may be empty.)
+    if (ps.enabled("normal")) ps.enable("normal_ref", ps.normal);
     MovingBodies<D> m(laws);
     m.place_all(ps, 0.0);
   }

@@ -193,7 +193,7 @@ std::vector<Eigen::Vector3d> wall_normals(const BodyGeometry& body,
     // nearest point instead, if within reach.
     if (region && n.norm() > tol && !region->contains(x + 2.0 * n, tol)) {
       const Eigen::Vector3d w = wetted_normal(*region, x, dirs, opt.dim, reach, dp, tol);
-      if (w.norm() > tol && region->contains(x + 2.0 * w, tol)) n = w;
+      if (w.norm() > tol && w.norm() <= reach && region->contains(x + 2.0 * w, tol)) n = w;
     }
     out[static_cast<std::size_t>(k)] = n;
     const Eigen::Vector3d ghost = x + 2.0 * n;

@@ -277,12 +277,15 @@ CaseSetup<D> setup_case(const CaseSpec& spec, const SetupReduce& red) {
   const double node_share = distributed ? static_cast<double>(red.node_size()) / red.size() : 1.0;
   const std::vector<geometry::BodyGeometry> geo = case_geometry(spec, &s.meshes);
   geometry::FillEstimate estimate;
-  try {
-    estimate = geometry::estimate_fill(geo, fo);
-    check_size(spec, estimate, D, node_share);
-  } catch (const std::invalid_argument& e) {
-    throw CaseError(spec.file, 0, e.what());
-  }
+  // (Agreed: each rank reads its own machine's free memory.)
+  agreed(red, [&] {
+    try {
+      estimate = geometry::estimate_fill(geo, fo);
+      check_size(spec, estimate, D, node_share);
+    } catch (const std::invalid_argument& e) {
+      throw CaseError(spec.file, 0, e.what());
+    }
+  });
   // A distributed set-up fills this rank's share, with a margin of one kernel support.
   const double support0 =
       kernel_support_factor(spec.kernel) * spec.coefh * std::sqrt(static_cast<double>(D)) * spec.dp;
@@ -591,7 +594,8 @@ CaseSetup<D> setup_case(const CaseSpec& spec, const SetupReduce& red) {
     }
   }
   // The neighbour grid: cells of the kernel support over the domain, padded by one per side.
-  {
+  // (Agreed: each rank reads its own machine's free memory.)
+  agreed(red, [&] {
     const double support = kernel_support_factor(p.kernel) * p.h;
     for (int d = 0; d < D; ++d) {
       p.periodic[static_cast<std::size_t>(d)] = spec.periodic[static_cast<std::size_t>(d)];
@@ -627,7 +631,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec, const SetupReduce& red) {
         << "; shrink the domain (at most 4e9 cells)";
       throw CaseError(spec.file, 0, m.str());
     }
-  }
+  });
 
   // Setup checks that need the particles: fill levels, fluid outside every tank, gauges.
   for (std::size_t b = 0; b < spec.bodies.size(); ++b) {

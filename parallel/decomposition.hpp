@@ -263,7 +263,8 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
 
 // Sends every active particle of `ps` to the rank whose slab holds it: a set-up distributed
 // over the ranks, or a checkpoint read in blocks of rows (apps/run_loop.cpp). The records
-// travel in rounds of at most `chunk` bytes per rank (MPI counts are ints); the staying
+// travel in rounds of at most `chunk` bytes received per rank (MPI counts and offsets are
+// ints); the staying
 // particles are compacted in place (no scratch the size of the set) and the arrivals appended,
 // the excluded particles (kept for the record) staying last. With `keys` (one per active
 // particle; e.g. the row it came from) the keys travel along and the active particles end
@@ -283,10 +284,12 @@ std::size_t redistribute(ParticleSet<D>& ps, const Slabs& slabs, const Comm& com
   std::vector<std::uint32_t> leaving;
   for (std::size_t i = 0; i < n0; ++i) {
     const double x = ps.pos[i][slabs.axis];
-    dest[i] = std::isfinite(x) ? slabs.owner(x) : me;
+    dest[i] = std::isfinite(x) ? slabs.owner(x) : 0;  // as share_by_slabs: rank 0 excludes it
     if (dest[i] != me) leaving.push_back(static_cast<std::uint32_t>(i));
   }
-  const std::size_t per_round = std::max<std::size_t>(1, chunk / full);
+  // A rank receives at most n senders' rounds: `chunk` in all (MPI's int offsets).
+  const std::size_t per_round =
+      std::max<std::size_t>(1, chunk / (full * static_cast<std::size_t>(n)));
   const auto rounds = static_cast<long>(
       comm.max(static_cast<double>((leaving.size() + per_round - 1) / per_round)));
   std::vector<std::byte> send, recv, arrived;
@@ -331,8 +334,9 @@ std::size_t redistribute(ParticleSet<D>& ps, const Slabs& slabs, const Comm& com
       if (dest[i] == me) a[w++] = a[i];
     for (std::size_t i = n0; i < total; ++i) a[w++] = a[i];  // the excluded block
     a.resize(kept + arriving + excluded);
-    std::move_backward(a.begin() + static_cast<long>(kept),
-                       a.begin() + static_cast<long>(kept + excluded), a.end());
+    if (arriving > 0 && excluded > 0)
+      std::move_backward(a.begin() + static_cast<long>(kept),
+                         a.begin() + static_cast<long>(kept + excluded), a.end());
   });
   if (keys) {
     std::size_t w = 0;

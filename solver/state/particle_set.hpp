@@ -128,6 +128,14 @@ struct ParticleSet {
   bool enabled(const FieldInfo& f) const {
     return !f.optional || enabled_[f.index];
   }
+  // The same by name (false for an unknown name).
+  bool enabled(const std::string& name) const {
+    bool on = false;
+    for_each_field([&](const FieldInfo& f, const auto&) {
+      if (name == f.name) on = enabled(f);
+    });
+    return on;
+  }
   // Turns an optional field on for every particle: a copy of `init` (same element type and
   // size), e.g. enable("pos_ref", pos). Throws for an unknown name or a mismatch.
   template <class T>
