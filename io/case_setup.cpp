@@ -742,8 +742,8 @@ CaseSetup<D> setup_case(const CaseSpec& spec, const SetupReduce& red) {
   } else {
     // The whole case's levels and box, then this rank's share without its margin.
     HydrostaticFrame<D> frame;
-    frame.lo = lo;
-    frame.hi = hi;
+    frame.lo = s.order_lo;  // the particles' box (lo, hi grew by moving bodies' paths)
+    frame.hi = s.order_hi;
     if (gnorm > 0.0) {
       const auto mine = fluid_levels(s.particles, up, p.dp);
       std::vector<double> level(spec.bodies.size(), -std::numeric_limits<double>::infinity());
