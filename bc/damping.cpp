@@ -101,8 +101,8 @@ void DampingZones<D>::after_integration(StepState<D>& s) {
       damped = true;
     }
     if (!damped) continue;
-    ps.vel[i] = ps.vel[i].cwiseProduct(f);
-    if (verlet) ps.vel_prev[i] = ps.vel_prev[i].cwiseProduct(f);
+    ps.vel[i] = narrow<D>(widen<D>(ps.vel[i]).cwiseProduct(f));
+    if (verlet) ps.vel_prev[i] = narrow<D>(widen<D>(ps.vel_prev[i]).cwiseProduct(f));
   }
 }
 
@@ -126,8 +126,8 @@ void Settling<D>::after_integration(StepState<D>& s) {
 #pragma omp parallel for schedule(static) if (n > ParticleSet <D>::kParallelMin)
   for (long i = 0; i < n; ++i) {
     if (!is_fluid(ps.role[i])) continue;
-    ps.vel[i] *= g;
-    if (verlet) ps.vel_prev[i] *= g;
+    ps.vel[i] = narrow<D>(g * widen<D>(ps.vel[i]));
+    if (verlet) ps.vel_prev[i] = narrow<D>(g * widen<D>(ps.vel_prev[i]));
   }
 }
 

@@ -32,28 +32,29 @@ void MdbcBoundary<D>::before_forces(StepState<D>& s) {
       if (slip) body_vel_[i] = ps.vel[i];
       switch (g.mode) {
         case GhostMode::Dry:
-          ps.rho[i] = rho0;
+          ps.rho[i] = static_cast<StateReal>(rho0);
           ++dry;
           continue;  // the wall shows its body's velocity
         case GhostMode::Shepard:
-          ps.rho[i] = std::max(rho0, g.rho);
+          ps.rho[i] = static_cast<StateReal>(std::max(rho0, g.rho));
           ++shepard;
           break;
         case GhostMode::Corrected:
           // rho_a = rho_g + (x_a - x_g) . grad rho_g, x_a - x_g = -2 n_a
-          ps.rho[i] = std::max(rho0, g.rho - 2.0 * ps.normal[i].dot(g.grad));
+          ps.rho[i] =
+              static_cast<StateReal>(std::max(rho0, g.rho - 2.0 * ps.normal[i].dot(g.grad)));
           ++corrected;
           break;
       }
       if (!slip) continue;
-      const Vec<D> vb = ps.vel[i];
+      const Vec<D> vb = widen<D>(ps.vel[i]);
       if (slip_ == MdbcSlip::NoSlip) {
-        ps.vel[i] = 2.0 * vb - g.vel;
+        ps.vel[i] = narrow<D>(2.0 * vb - g.vel);
       } else {  // free slip: tangential part of the ghost's, normal part mirrored
         const double len = ps.normal[i].norm();
         if (len > 0.0) {
           const Vec<D> u = ps.normal[i] / len;
-          ps.vel[i] = g.vel + 2.0 * (vb - g.vel).dot(u) * u;
+          ps.vel[i] = narrow<D>(g.vel + 2.0 * (vb - g.vel).dot(u) * u);
         }
       }
     }

@@ -75,8 +75,9 @@ GhostValue<D> ghost_interpolate(const ParticleSet<D>& ps, const CellGrid<D>& gri
     B(0, 0) += m * w;
     B.template block<D, 1>(1, 0) += m * gw;
     if (with_velocity) {
-      B.template block<1, D>(0, 1) += (w * V) * ps.vel[b].transpose();
-      B.template block<D, D>(1, 1) += V * gw * ps.vel[b].transpose();
+      const Vec<D> vb = widen<D>(ps.vel[b]);
+      B.template block<1, D>(0, 1) += (w * V) * vb.transpose();
+      B.template block<D, D>(1, 1) += V * gw * vb.transpose();
     }
   });
   GhostValue<D> out;
@@ -157,7 +158,7 @@ class MdbcBoundary final : public BoundaryModel<D> {
     return ps.body[i] < dbc_bodies_.size() && dbc_bodies_[ps.body[i]] != 0;
   }
   Counts counts_;
-  std::vector<Vec<D>> body_vel_;  // wall velocities while the forces see the slip velocity
+  std::vector<StateVec<D>> body_vel_;  // wall velocities while the forces see the slip velocity
 };
 
 template <int D>

@@ -148,7 +148,7 @@ class MovingBodies final : public StepHook<D> {
       ref.template head<D>() = ps.pos_ref[i];
       placements_[b].apply(ref, x, v);
       ps.pos[i] = x.template head<D>();
-      ps.vel[i] = v.template head<D>();
+      ps.vel[i] = narrow<D>(Vec<D>(v.template head<D>()));
       if (turn_normals) {
         Eigen::Vector3d nref = Eigen::Vector3d::Zero();
         nref.template head<D>() = ps.normal_ref[i];

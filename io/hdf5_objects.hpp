@@ -122,6 +122,7 @@ template <class T>
 struct H5Types;
 // clang-format off
 template <> struct H5Types<double> { static hid_t mem() { return H5T_NATIVE_DOUBLE; } static hid_t file() { return H5T_IEEE_F64LE; } };
+template <> struct H5Types<float> { static hid_t mem() { return H5T_NATIVE_FLOAT; } static hid_t file() { return H5T_IEEE_F32LE; } };
 template <> struct H5Types<std::int32_t> { static hid_t mem() { return H5T_NATIVE_INT32; } static hid_t file() { return H5T_STD_I32LE; } };
 template <> struct H5Types<std::int64_t> { static hid_t mem() { return H5T_NATIVE_INT64; } static hid_t file() { return H5T_STD_I64LE; } };
 template <> struct H5Types<std::uint8_t> { static hid_t mem() { return H5T_NATIVE_UINT8; } static hid_t file() { return H5T_STD_U8LE; } };

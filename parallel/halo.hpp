@@ -119,11 +119,13 @@ class SlabExchange final : public Exchange<D> {
 
   void refresh(ParticleSet<D>& ps) override {
     const double t0 = wtime();
-    constexpr std::size_t rec = 2 * sizeof(Vec<D>) + sizeof(double);
+    // pos, vel, rho: what the pair terms read and the integrator changed (stored types).
+    constexpr std::size_t xv = sizeof(Vec<D>), vv = sizeof(StateVec<D>), rv = sizeof(StateReal);
+    constexpr std::size_t rec = xv + vv + rv;
     exchange_lists(ps, rec, [](const ParticleSet<D>& p, std::size_t i, std::byte* out) {
-      std::memcpy(out, p.pos[i].data(), sizeof(Vec<D>));
-      std::memcpy(out + sizeof(Vec<D>), p.vel[i].data(), sizeof(Vec<D>));
-      std::memcpy(out + 2 * sizeof(Vec<D>), &p.rho[i], sizeof(double));
+      std::memcpy(out, p.pos[i].data(), xv);
+      std::memcpy(out + xv, p.vel[i].data(), vv);
+      std::memcpy(out + xv + vv, &p.rho[i], rv);
     });
     const std::size_t arriving = total_received(rec);
     if (arriving != slot_of_.size() || ps.n_ghost != arriving)
@@ -132,9 +134,9 @@ class SlabExchange final : public Exchange<D> {
     for (std::size_t k = 0; k < arriving; ++k) {
       const std::byte* in = recv_.data() + k * rec;
       const std::size_t j = base + slot_of_[k];
-      std::memcpy(ps.pos[j].data(), in, sizeof(Vec<D>));
-      std::memcpy(ps.vel[j].data(), in + sizeof(Vec<D>), sizeof(Vec<D>));
-      std::memcpy(&ps.rho[j], in + 2 * sizeof(Vec<D>), sizeof(double));
+      std::memcpy(ps.pos[j].data(), in, xv);
+      std::memcpy(ps.vel[j].data(), in + xv, vv);
+      std::memcpy(&ps.rho[j], in + xv + vv, rv);
     }
     stats_.image_bytes += arriving * rec;
     stats_.seconds += wtime() - t0;

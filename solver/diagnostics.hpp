@@ -34,9 +34,9 @@ FluidTotals<D> fluid_totals(const ParticleSet<D>& ps) {
     if (ps.role[i] != Role::Fluid) continue;
     ++t.count;
     t.mass += ps.mass[i];
-    t.kinetic_energy += 0.5 * ps.mass[i] * ps.vel[i].squaredNorm();
-    t.momentum += ps.mass[i] * ps.vel[i];
-    t.max_speed = std::max(t.max_speed, ps.vel[i].norm());
+    t.kinetic_energy += 0.5 * ps.mass[i] * ps.velocity(i).squaredNorm();
+    t.momentum += ps.mass[i] * ps.velocity(i);
+    t.max_speed = std::max(t.max_speed, ps.velocity(i).norm());
   }
   return t;
 }

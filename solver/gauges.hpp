@@ -184,7 +184,7 @@ Vec<D> probe_velocity(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& x
   double sum_w = 0.0;
   gauge_detail::for_fluid_near(ps, x, kernel.support(), [&](std::size_t j, double r) {
     const double wv = kernel.w(r) * ps.mass[j] / ps.rho[j];
-    sum_v += wv * ps.vel[j];
+    sum_v += wv * ps.velocity(j);
     sum_w += wv;
   });
   if (!(sum_w > 0.0)) return Vec<D>::Constant(std::numeric_limits<double>::quiet_NaN());

@@ -340,8 +340,11 @@ TYPED_TEST(CellGridTest, ReorderModesAgree) {
     own.body[i] = static_cast<std::uint16_t>(i % 7);
     own.role[i] = i % 3 ? Role::Fluid : Role::FixedWall;
   }
-  own.enable("pos_ref", own.vel);
-  own.enable("normal", own.vel_prev);
+  std::vector<Vec<D>> ref(own.total()), nrm(own.total());
+  for (std::size_t i = 0; i < own.total(); ++i)
+    ref[i] = widen<D>(own.vel[i]) + filled<D>(2.0), nrm[i] = widen<D>(own.vel_prev[i]);
+  own.enable("pos_ref", ref);
+  own.enable("normal", nrm);
   ParticleSet<D> lent_set = own, in_place_set = own;
   // Follow arrays: a value that identifies its particle (the id, and minus the id).
   std::vector<Vec<D>> follow_v(own.total());
@@ -380,6 +383,8 @@ TYPED_TEST(CellGridTest, ReorderModesAgree) {
       });
     });
     EXPECT_EQ(sv.size(), own.total());
+    // The float fields (if any) went through the lent arrays' bytes, none of the set's own.
+    EXPECT_EQ(lent_set.raw_scratch_bytes(), 0u);
     EXPECT_EQ(sd1.size(), own.total());
     EXPECT_EQ(sd2.size(), own.total());
     for (std::size_t i = 0; i < in_place_set.size(); ++i) {

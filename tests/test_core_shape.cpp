@@ -62,7 +62,7 @@ TEST(FieldTable, AFieldFollowsItsParticleThroughSortAndCheckpoint) {
     EXPECT_EQ(ps.normal[i], Vec<2>(0.5 * id, 2.0)) << "normal of particle " << id;
     EXPECT_EQ(ps.normal_ref[i], Vec<2>(-1.0, 0.25 * id)) << "normal_ref of particle " << id;
     EXPECT_EQ(ps.rho[i], 1000.0 + id);
-    EXPECT_EQ(ps.vel[i], Vec<2>(id, -double(id)));
+    EXPECT_EQ(ps.velocity(i), Vec<2>(id, -double(id)));
   }
   EXPECT_GT(moved, 250) << "the sort did not reorder";
 

@@ -25,6 +25,7 @@
 #include "solver/diagnostics.hpp"
 #include "solver/physics/kernels.hpp"
 #include "tests/case_run.hpp"
+#include "tests/state_precision.hpp"
 
 namespace swell {
 namespace {
@@ -287,16 +288,18 @@ TEST(WallNormals, PointsBeyondTheWallLayersAreAnError) {
 // Ghost-node interpolation
 
 // Fluid particles on a jittered lattice of [x0, x1] x [y0, y1] with density and velocity
-// linear in position.
+// linear in position. Positions are multiples of 2^-12 m and the fields' coefficients dyadic,
+// so the densities and velocities are stored exactly in float too (types.hpp).
 ParticleSet<2> linear_fluid(double dp, double x0, double x1, double y0, double y1, double jitter) {
   ParticleSet<2> ps;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-jitter, jitter);
+  const auto grid = [](double c) { return std::round(c * 4096.0) / 4096.0; };
   for (double y = y0 + 0.5 * dp; y < y1; y += dp)
     for (double x = x0 + 0.5 * dp; x < x1; x += dp) {
-      const Vec<2> p(x + u(rng) * dp, y + u(rng) * dp);
+      const Vec<2> p(grid(x + u(rng) * dp), grid(y + u(rng) * dp));
       const double rho = 1000.0 + 40.0 * p.x() - 25.0 * p.y();
-      const Vec<2> v(0.3 + 2.0 * p.x() - 1.0 * p.y(), -0.1 + 0.5 * p.y());
+      const Vec<2> v(0.25 + 2.0 * p.x() - 1.0 * p.y(), -0.125 + 0.5 * p.y());
       ps.add(p, v, rho, rho * dp * dp * (1.0 + 0.1 * u(rng)), Role::Fluid, 0);
     }
   return ps;
@@ -315,8 +318,8 @@ TEST(MdbcGhost, LinearFieldsAreReproducedExactly) {
     EXPECT_NEAR(g.rho, 1000.0 + 40.0 * xg.x() - 25.0 * xg.y(), 1e-9);
     EXPECT_NEAR(g.grad.x(), 40.0, 1e-7);
     EXPECT_NEAR(g.grad.y(), -25.0, 1e-7);
-    EXPECT_NEAR(g.vel.x(), 0.3 + 2.0 * xg.x() - 1.0 * xg.y(), 1e-10);
-    EXPECT_NEAR(g.vel.y(), -0.1 + 0.5 * xg.y(), 1e-10);
+    EXPECT_NEAR(g.vel.x(), 0.25 + 2.0 * xg.x() - 1.0 * xg.y(), 1e-10);
+    EXPECT_NEAR(g.vel.y(), -0.125 + 0.5 * xg.y(), 1e-10);
   }
   // In the full support the correction matrix is close to the identity's determinant.
   const GhostValue<2> mid = ghost_interpolate<2>(ps, grid, k, Vec<2>(0.1, 0.1), 1e-3, false);

@@ -76,7 +76,7 @@ Reference brute_force(const ParticleSet<D>& ps, const K& kernel, const SolverPar
       const double r2 = rab.squaredNorm();
       if (r2 >= s2 || r2 <= 1e-18) continue;
       const Vec<D> gradw = rab * kernel.f(std::sqrt(r2));
-      const Vec<D> vab = ps.vel[a] - ps.vel[b];
+      const Vec<D> vab = ps.velocity(a) - ps.velocity(b);
       const double rho_b = ps.rho[b], m_b = ps.mass[b];
       drho += m_b * vab.dot(gradw);
       double pterm = prs_a + eos.pressure(rho_b) / (rho_b * rho_b);
@@ -146,7 +146,7 @@ void compare(KernelType kt, ViscosityModel visc, DiffusionModel diff, double gam
     EXPECT_NEAR(f.visc_dt_max, ref.visc_dt_max, 1e-12 * ref.visc_dt_max);
     // cs_max is the largest c0 (rho/rho0)^((gamma-1)/2).
     double rho_max = 0.0;
-    for (std::size_t i = 0; i < ps.size(); ++i) rho_max = std::max(rho_max, ps.rho[i]);
+    for (std::size_t i = 0; i < ps.size(); ++i) rho_max = std::max(rho_max, double(ps.rho[i]));
     EXPECT_DOUBLE_EQ(f.cs_max, eos.sound_speed(rho_max));
   }
 }

@@ -29,7 +29,8 @@ ParticleSet<D> random_set(std::size_t n, unsigned seed, bool optional) {
   for (std::size_t i = 0; i < n; ++i)
     ps.add(vec(), vec(), 1000.0 + u(rng), 0.1 + 0.01 * u(rng),
            i % 3 ? Role::Fluid : Role::MovingWall, static_cast<std::uint16_t>(i % 7));
-  for (std::size_t i = 0; i < n; ++i) ps.vel_prev[i] = vec(), ps.rho_prev[i] = 999.0 + u(rng);
+  for (std::size_t i = 0; i < n; ++i)
+    ps.vel_prev[i] = narrow<D>(vec()), ps.rho_prev[i] = 999.0 + u(rng);
   if (optional) {
     std::vector<Vec<D>> ref(n), nrm(n);
     for (std::size_t i = 0; i < n; ++i) ref[i] = vec(), nrm[i] = vec();
@@ -44,9 +45,11 @@ void round_trip(bool optional) {
   const ParticleSet<D> a = random_set<D>(50, 7, optional);
   ParticleSet<D> b = random_set<D>(50, 8, optional);
   const std::size_t rec = record_bytes(a);
-  // pos, vel, vel_prev (V); rho, rho_prev, mass (double); role, body, id; + pos_ref, normal.
-  const std::size_t expect = (optional ? 5 : 3) * sizeof(Vec<D>) + 3 * sizeof(double) +
-                             sizeof(Role) + sizeof(std::uint16_t) + sizeof(std::uint32_t);
+  // pos (V); vel, vel_prev (state vectors); rho, rho_prev (state scalars); mass (double); role,
+  // body, id; + pos_ref, normal (V).
+  const std::size_t expect = (optional ? 3 : 1) * sizeof(Vec<D>) + 2 * sizeof(StateVec<D>) +
+                             2 * sizeof(StateReal) + sizeof(double) + sizeof(Role) +
+                             sizeof(std::uint16_t) + sizeof(std::uint32_t);
   EXPECT_EQ(rec, expect);
   std::vector<std::byte> buf(rec);
   for (std::size_t i = 0; i < a.total(); ++i) {
@@ -56,8 +59,8 @@ void round_trip(bool optional) {
   for (std::size_t i = 0; i < a.total(); ++i) {
     const std::size_t j = a.total() - 1 - i;
     EXPECT_EQ(0, std::memcmp(&a.pos[i], &b.pos[j], sizeof(Vec<D>)));
-    EXPECT_EQ(0, std::memcmp(&a.vel_prev[i], &b.vel_prev[j], sizeof(Vec<D>)));
-    EXPECT_EQ(0, std::memcmp(&a.rho_prev[i], &b.rho_prev[j], sizeof(double)));
+    EXPECT_EQ(0, std::memcmp(&a.vel_prev[i], &b.vel_prev[j], sizeof(StateVec<D>)));
+    EXPECT_EQ(0, std::memcmp(&a.rho_prev[i], &b.rho_prev[j], sizeof(StateReal)));
     EXPECT_EQ(a.role[i], b.role[j]);
     EXPECT_EQ(a.body[i], b.body[j]);
     EXPECT_EQ(a.id[i], b.id[j]);

@@ -247,7 +247,7 @@ void check_region(KernelType kernel) {
   std::vector<Vec<D>> an;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (!region.contains(ps, i)) continue;
-    near.add(ps.pos[i], ps.vel[i], ps.rho[i], ps.mass[i], ps.role[i], ps.body[i]);
+    near.add(ps.pos[i], ps.velocity(i), ps.rho[i], ps.mass[i], ps.role[i], ps.body[i]);
     pn.push_back(p[i]);
     an.push_back(ace[i]);
   }

@@ -74,7 +74,7 @@ Simulation<2> make_tgv(const Tgv& c) {
 
 double kinetic_energy(const ParticleSet<2>& ps) {
   double e = 0.0;
-  for (std::size_t i = 0; i < ps.size(); ++i) e += 0.5 * ps.mass[i] * ps.vel[i].squaredNorm();
+  for (std::size_t i = 0; i < ps.size(); ++i) e += 0.5 * ps.mass[i] * ps.velocity(i).squaredNorm();
   return e;
 }
 
@@ -120,7 +120,7 @@ TgvRun run_tgv(const Tgv& c, double t_end) {
     const Vec<2> x = ps.pos[i] + Vec<2>::Constant(c.phase);
     const Vec<2> ve(-c.U * decay * std::cos(k * x.x()) * std::sin(k * x.y()),
                     c.U * decay * std::sin(k * x.x()) * std::cos(k * x.y()));
-    err2 += (ps.vel[i] - ve).squaredNorm();
+    err2 += (ps.velocity(i) - ve).squaredNorm();
   }
   r.vel_error = std::sqrt(err2 / ps.size()) / (c.U * decay);
   return r;
@@ -302,7 +302,7 @@ PoiseuilleRun run_channel(int ny, BoundaryType boundary, const std::vector<doubl
       if (!is_fluid(q.role[i])) continue;
       const int j = static_cast<int>(std::floor(q.pos[i].y() / dp));
       if (j < 0 || j >= ny) continue;
-      sum[j] += q.vel[i].x();
+      sum[j] += q.velocity(i).x();
       ysum[j] += q.pos[i].y();
       ++cnt[j];
     }
@@ -448,7 +448,8 @@ Result run_time_order(const Options& opt) {
     const auto& ps = sim.particles();
     x.assign(ps.total(), Vec<2>::Zero());
     v.assign(ps.total(), Vec<2>::Zero());
-    for (std::size_t i = 0; i < ps.size(); ++i) x[ps.id[i]] = ps.pos[i], v[ps.id[i]] = ps.vel[i];
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      x[ps.id[i]] = ps.pos[i], v[ps.id[i]] = ps.velocity(i);
   };
   Table t{"time_order",
           {"dt [s]", "symplectic position error [m]", "symplectic velocity error [m/s]",
@@ -485,8 +486,17 @@ Result run_time_order(const Options& opt) {
   }
   const double sx = fitted_order(dts, cols[0]), sv = fitted_order(dts, cols[1]);
   const double vx = fitted_order(dts, cols[2]), vv = fitted_order(dts, cols[3]);
-  r.figures.push_back(at_least("symplectic: order of the position error", sx, 1.8));
-  r.figures.push_back(at_least("symplectic: order of the velocity error", sv, 1.8));
+  // With velocities stored in float (types.hpp) the runs differ by their rounding, ~1e-5 of the
+  // velocity after the reference's 6,400 steps (measured: the errors stop falling at ~5e-7 m
+  // and ~1e-5 m/s from dt = 5e-4 s), which hides the truncation error: the order is checked in
+  // a build with -DSWELL_DOUBLE_STATE=ON (.ci/run builds one) and only reported in the other.
+  if (kStateEps < 1e-10) {
+    r.figures.push_back(at_least("symplectic: order of the position error", sx, 1.8));
+    r.figures.push_back(at_least("symplectic: order of the velocity error", sv, 1.8));
+  } else {
+    r.figures.push_back(report("symplectic: order of the position error (float state)", sx));
+    r.figures.push_back(report("symplectic: order of the velocity error (float state)", sv));
+  }
   r.figures.push_back(report("Verlet (Euler step every 40): order of the position error", vx));
   r.figures.push_back(report("Verlet (Euler step every 40): order of the velocity error", vv));
   r.tables.push_back(t);
@@ -507,7 +517,11 @@ Result run_time_order(const Options& opt) {
             ": RMS over the particles (matched by id) of the position and velocity differences; "
             "orders fitted by least squares in log-log. The symplectic scheme is second order. "
             "Verlet's Euler step every 40 steps (as DualSPHysics) is a first-order step whose "
-            "count grows as dt falls, so its order lies between one and two.";
+            "count grows as dt falls, so its order lies between one and two. The symplectic "
+            "order is checked (>= 1.8) only where velocity and density are stored in double "
+            "(-DSWELL_DOUBLE_STATE=ON): with the default float storage the rounding of the "
+            "stored velocities (~1e-5 of them after the reference's 6,400 steps) is larger than "
+            "the truncation error below dt = 1e-3 s, and the figures are reported only.";
   return r;
 }
 

@@ -89,7 +89,7 @@ Run run_case(const Case& c, int n, int steps) {
   r.final_min = r.min_dist.back();
   double v2 = 0.0;
   for (std::size_t i = 0; i < sim.particles().size(); ++i)
-    v2 += sim.particles().vel[i].squaredNorm();
+    v2 += sim.particles().velocity(i).squaredNorm();
   r.final_vrms = std::sqrt(v2 / sim.particles().size());
   return r;
 }

@@ -296,7 +296,7 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
     normal[a].setZero();
     shift[a].setZero();
     if (ps.role[a] != Role::Fluid) continue;
-    const double diffusion = ah_dt * ps.vel[a].norm();
+    const double diffusion = ah_dt * ps.velocity(a).norm();
     if (!(diffusion > 0.0)) continue;
     if (work.near_wall[a]) {  // the mode leaves it where it is (its normal stays 0)
       ++near_wall;
@@ -367,7 +367,7 @@ ShiftingStats compute_shifting(const ParticleSet<D>& ps, const CellGrid<D>& grid
     if (work.drho.size() < np) work.drho.resize(np);
     const auto near = [&](const Vec<D>& x, auto&& fn) { grid.for_each_candidate_near(x, fn); };
     const auto fluid = [&](std::uint32_t b) { return ps.role[b] == Role::Fluid; };
-    const auto rho = [&](std::uint32_t b) { return ps.rho[b]; };
+    const auto rho = [&](std::uint32_t b) -> double { return ps.rho[b]; };
 #pragma omp parallel for schedule(dynamic, 256)
     for (long i = 0; i < n; ++i) {
       const auto a = static_cast<std::uint32_t>(i);

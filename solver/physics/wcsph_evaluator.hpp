@@ -149,7 +149,9 @@ class WcsphEvaluator {
   DensityDiffusion dd_;
   double eta2_, c0_, inv_rho0_;
   Vec<D> g_;
-  const double *P_, *U_, *rho_, *mass_;
+  const double* P_;
+  const StateReal *U_, *rho_;  // widened to double where read
+  const double* mass_;
   double m0_;
   const double *prs_, *cs_;
   double* drho_;

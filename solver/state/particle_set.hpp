@@ -11,6 +11,7 @@
 // once the scratch buffers reached the particle count.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -41,12 +42,12 @@ struct FieldInfo {
 // Element types must be trivially copyable (they are stored raw in checkpoints).
 #define SWELL_PARTICLE_FIELDS(X)                                                           \
   X(pos, V, FieldClass::State, "pos", false)                                               \
-  X(vel, V, FieldClass::State, "vel", false)                                               \
-  X(rho, double, FieldClass::State, "rho", false)                                          \
+  X(vel, SV, FieldClass::State, "vel", false)                                              \
+  X(rho, StateReal, FieldClass::State, "rho", false)                                       \
   /* integrator memory: v^n, rho^n (symplectic) or v^{n-1}, rho^{n-1} (Verlet); neither */ \
   /* reads x^n (the symplectic corrector drifts on from the predicted position)         */ \
-  X(vel_prev, V, FieldClass::Integrator, nullptr, false)                                   \
-  X(rho_prev, double, FieldClass::Integrator, nullptr, false)                              \
+  X(vel_prev, SV, FieldClass::Integrator, nullptr, false)                                  \
+  X(rho_prev, StateReal, FieldClass::Integrator, nullptr, false)                           \
   X(mass, double, FieldClass::Constant, "mass", false)                                     \
   X(role, Role, FieldClass::Constant, "type", false)                                       \
   X(body, std::uint16_t, FieldClass::Constant, "body", false)                              \
@@ -73,6 +74,7 @@ struct LentScratch {
 template <int D>
 struct ParticleSet {
   using V = Vec<D>;
+  using SV = StateVec<D>;  // velocity storage (types.hpp: float unless SWELL_DOUBLE_STATE)
 
 #define SWELL_DECLARE_FIELD(NAME, TYPE, CLS, SNAP, OPT) std::vector<TYPE> NAME;
   SWELL_PARTICLE_FIELDS(SWELL_DECLARE_FIELD)
@@ -123,6 +125,11 @@ struct ParticleSet {
 #undef SWELL_COUNT_FIELD
     return n;
   }();
+
+  // Particle i's stored velocity in double (the storage may be float: types.hpp).
+  V velocity(std::size_t i) const {
+    return widen<D>(vel[i]);
+  }
 
   // Whether a field is in use (always, unless it is optional and not enabled).
   bool enabled(const FieldInfo& f) const {
@@ -175,10 +182,10 @@ struct ParticleSet {
       if (enabled(f)) a.emplace_back();
     });
     pos.back() = x;
-    vel.back() = v;
-    rho.back() = density;
-    vel_prev.back() = v;
-    rho_prev.back() = density;
+    vel.back() = narrow<D>(v);
+    rho.back() = static_cast<StateReal>(density);
+    vel_prev.back() = vel.back();
+    rho_prev.back() = rho.back();
     mass.back() = m;
     role.back() = r;
     body.back() = body_id;
@@ -223,12 +230,20 @@ struct ParticleSet {
       });
       if (!later) break;
     }
+    permute_raw(order, lent);
+  }
+
+  // Bytes of the set's own byte scratch (permute_raw): zero while lent arrays hold the float
+  // fields (the time loop's sorts), which the tests check.
+  std::size_t raw_scratch_bytes() const {
+    return raw_.capacity();
   }
 
   // Frees the set's own scratch arrays (e.g. those a set-up sort allocated, before a Simulation
   // that lends its own takes the set over).
   void release_scratch() {
     scratch_ = Scratch{};
+    raw_ = {};
     seen_ = {};
   }
 
@@ -256,6 +271,12 @@ struct ParticleSet {
   using Slots = std::array<std::vector<T>, kSlots>;
   using Scratch =
       std::tuple<Slots<V>, Slots<double>, Slots<Role>, Slots<std::uint16_t>, Slots<std::uint32_t>>;
+  // Element types without typed scratch (the float state, types.hpp) are reordered through
+  // bytes: see permute_raw.
+  template <class T>
+  static constexpr bool is_raw() {
+    return type_slot<T>() < 0;
+  }
   template <class T>
   static constexpr int type_slot() {
     if constexpr (std::is_same_v<T, V>) return 0;
@@ -321,17 +342,110 @@ struct ParticleSet {
     int count[std::tuple_size_v<Scratch>] = {};
     for_each_field([&](const FieldInfo& f, auto& a) {
       using T = typename std::decay_t<decltype(a)>::value_type;
-      static_assert(type_slot<T>() >= 0, "add the field's element type to ParticleSet::Scratch");
-      if (!enabled(f)) return;
-      const int ordinal = count[type_slot<T>()]++;
-      int slots = kSlots;
-      std::vector<T>* scratch = scratch_slot<T>(lent, ordinal, slots);
-      fn(a, *scratch, ordinal / slots);
+      if constexpr (is_raw<T>()) {
+        return;
+      } else {
+        if (!enabled(f)) return;
+        const int ordinal = count[type_slot<T>()]++;
+        int slots = kSlots;
+        std::vector<T>* scratch = scratch_slot<T>(lent, ordinal, slots);
+        fn(a, *scratch, ordinal / slots);
+      }
     });
     (void)pass;
   }
 
+  // The reorder of the fields whose element type has no typed scratch (is_raw): each is
+  // gathered, as bytes, into memory that is dead during this reorder (the lent arrays, which
+  // the typed passes left holding old contents; the set's own byte array where they do not
+  // suffice), then copied back. Lent arrays are resized to total() as in permute().
+  void permute_raw(const std::vector<std::uint32_t>& order, const LentScratch<D>& lent) {
+    const std::size_t n = order.size(), total_n = pos.size();
+    struct Area {
+      unsigned char* p;
+      std::size_t bytes;
+    };
+    std::array<Area, 4> lent_areas{};
+    int n_areas = 0;
+    if (lent.vec) {
+      lent.vec->resize(total_n);
+      lent_areas[n_areas++] = {reinterpret_cast<unsigned char*>(lent.vec->data()),
+                               total_n * sizeof(V)};
+    }
+    for (std::vector<double>* d : lent.dbl)
+      if (d) {
+        d->resize(total_n);
+        lent_areas[n_areas++] = {reinterpret_cast<unsigned char*>(d->data()),
+                                 total_n * sizeof(double)};
+      }
+    // Place each raw field, largest first (first fit decreasing: in 3D the two float vectors
+    // then fill the lent vector array exactly and the float scalars a double array): the first
+    // lent area with room left, else the set's own byte array.
+    std::array<unsigned char*, kNumFields> where{};
+    std::array<std::size_t, kNumFields> need{}, own_offset{};
+    std::array<int, kNumFields> by_size{};
+    int n_raw = 0;
+    for_each_field([&](const FieldInfo& f, auto& a) {
+      using T = typename std::decay_t<decltype(a)>::value_type;
+      if constexpr (is_raw<T>()) {
+        if (!enabled(f)) return;
+        // (no padding: the element copies below are memcpy, which needs no alignment)
+        need[f.index] = n * sizeof(T);
+        by_size[n_raw++] = f.index;
+      }
+    });
+    const bool any = n_raw > 0;
+    std::stable_sort(by_size.begin(), by_size.begin() + n_raw,
+                     [&](int a, int b) { return need[a] > need[b]; });
+    std::array<std::size_t, 4> used{};
+    std::size_t own_bytes = 0;
+    for (int r = 0; r < n_raw; ++r) {
+      const int k = by_size[r];
+      for (int a = 0; a < n_areas && !where[k]; ++a)
+        if (lent_areas[a].bytes - used[a] >= need[k]) {
+          where[k] = lent_areas[a].p + used[a];
+          used[a] += need[k];
+        }
+      if (!where[k]) {
+        own_offset[k] = own_bytes;
+        own_bytes += need[k];
+      }
+    }
+    if (!any) return;
+    if (raw_.size() < own_bytes) raw_.resize(own_bytes);
+    for_each_field([&](const FieldInfo& f, auto& a) {
+      using T = typename std::decay_t<decltype(a)>::value_type;
+      if constexpr (is_raw<T>())
+        if (enabled(f) && !where[f.index]) where[f.index] = raw_.data() + own_offset[f.index];
+    });
+    const long nl = static_cast<long>(n);
+#pragma omp parallel if (nl > kParallelMin)
+    {
+      for_each_field([&](const FieldInfo& f, auto& a) {
+        using T = typename std::decay_t<decltype(a)>::value_type;
+        if constexpr (is_raw<T>()) {
+          if (!enabled(f)) return;
+          unsigned char* out = where[f.index];
+#pragma omp for schedule(static) nowait
+          for (long i = 0; i < nl; ++i) std::memcpy(out + i * sizeof(T), &a[order[i]], sizeof(T));
+        }
+      });
+#pragma omp barrier
+      for_each_field([&](const FieldInfo& f, auto& a) {
+        using T = typename std::decay_t<decltype(a)>::value_type;
+        if constexpr (is_raw<T>()) {
+          if (!enabled(f)) return;
+          const unsigned char* in = where[f.index];
+#pragma omp for schedule(static) nowait
+          for (long i = 0; i < nl; ++i)
+            std::memcpy(static_cast<void*>(&a[i]), in + i * sizeof(T), sizeof(T));
+        }
+      });
+    }
+  }
+
   Scratch scratch_;
+  std::vector<unsigned char> raw_;   // permute_raw's own byte scratch
   std::vector<std::uint64_t> seen_;  // permute_in_place's cycle marks
   std::array<bool, kNumFields> enabled_{};
 };

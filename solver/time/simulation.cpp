@@ -317,10 +317,11 @@ void Simulation<D>::step_symplectic() {
   for (long i = 0; i < n; ++i) {
     ps_.vel_prev[i] = ps_.vel[i];
     ps_.rho_prev[i] = ps_.rho[i];
-    ps_.rho[i] += half * f_.drho[i];
+    ps_.rho[i] = static_cast<StateReal>(ps_.rho[i] + half * f_.drho[i]);
     if (is_fluid(ps_.role[i])) {
-      ps_.pos[i] += half * ps_.vel[i];
-      ps_.vel[i] += half * f_.ace[i];
+      const Vec<D> v = widen<D>(ps_.vel[i]);
+      ps_.pos[i] += half * v;
+      ps_.vel[i] = narrow<D>(v + half * f_.ace[i]);
     }
   }
   after_substep(time_ + half);
@@ -332,10 +333,10 @@ void Simulation<D>::step_symplectic() {
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < m; ++i) {
     const double eps = -f_.drho[i] / ps_.rho[i] * dt_;
-    ps_.rho[i] = ps_.rho_prev[i] * (2.0 - eps) / (2.0 + eps);
+    ps_.rho[i] = static_cast<StateReal>(ps_.rho_prev[i] * (2.0 - eps) / (2.0 + eps));
     if (is_fluid(ps_.role[i])) {
-      ps_.vel[i] = ps_.vel_prev[i] + dt_ * f_.ace[i];
-      ps_.pos[i] += half * ps_.vel[i];
+      ps_.vel[i] = narrow<D>(widen<D>(ps_.vel_prev[i]) + dt_ * f_.ace[i]);
+      ps_.pos[i] += half * widen<D>(ps_.vel[i]);  // the stored (rounded) velocity
     }
   }
   after_substep(time_ + dt_);
@@ -355,16 +356,17 @@ void Simulation<D>::step_verlet() {
   const double dt = dt_, dt2 = dt_ * dt_;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
-    const double rho_new =
-        euler ? ps_.rho[i] + dt * f_.drho[i] : ps_.rho_prev[i] + 2.0 * dt * f_.drho[i];
+    const double rho_new = euler ? double(ps_.rho[i]) + dt * f_.drho[i]
+                                 : double(ps_.rho_prev[i]) + 2.0 * dt * f_.drho[i];
     ps_.rho_prev[i] = ps_.rho[i];
-    ps_.rho[i] = rho_new;
+    ps_.rho[i] = static_cast<StateReal>(rho_new);
     if (is_fluid(ps_.role[i])) {
-      const Vec<D> v_new = euler ? Vec<D>(ps_.vel[i] + dt * f_.ace[i])
-                                 : Vec<D>(ps_.vel_prev[i] + 2.0 * dt * f_.ace[i]);
-      ps_.pos[i] += dt * ps_.vel[i] + 0.5 * dt2 * f_.ace[i];
+      const Vec<D> v = widen<D>(ps_.vel[i]);
+      const Vec<D> v_new = euler ? Vec<D>(v + dt * f_.ace[i])
+                                 : Vec<D>(widen<D>(ps_.vel_prev[i]) + 2.0 * dt * f_.ace[i]);
+      ps_.pos[i] += dt * v + 0.5 * dt2 * f_.ace[i];
       ps_.vel_prev[i] = ps_.vel[i];
-      ps_.vel[i] = v_new;
+      ps_.vel[i] = narrow<D>(v_new);
     }
   }
   after_substep(time_ + dt_);

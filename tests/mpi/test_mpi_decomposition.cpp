@@ -43,9 +43,9 @@ Vec<3> position(std::uint32_t id, int round) {
 // Every other field is a function of the id alone, so a record that arrives can be checked.
 void fill(ParticleSet<3>& ps, std::size_t i, std::uint32_t id, int round) {
   ps.pos[i] = position(id, round);
-  ps.vel[i] = Vec<3>(hash01(id, 4), -hash01(id, 5), 1.0 / (1.0 + id));
+  ps.vel[i] = narrow<3>(Vec<3>(hash01(id, 4), -hash01(id, 5), 1.0 / (1.0 + id)));
   ps.rho[i] = 1000.0 + 1e-3 * id + hash01(id, 6);
-  ps.vel_prev[i] = 0.5 * ps.vel[i];
+  ps.vel_prev[i] = narrow<3>(Vec<3>(0.5 * ps.velocity(i)));
   ps.rho_prev[i] = ps.rho[i] - 1e-7 * id;
   ps.mass[i] = 0.001 + 1e-9 * id;
   ps.role[i] = id % 5 == 0 ? Role::FixedWall : Role::Fluid;
@@ -91,7 +91,7 @@ void expect_consistent(const ParticleSet<3>& ps, const Slabs& slabs, const Comm&
   }
   for (std::size_t i = 0; i < ps.size(); ++i) {
     ASSERT_EQ(ps.pos[i], ref.pos[i]) << "id " << ps.id[i];
-    ASSERT_EQ(ps.vel[i], ref.vel[i]);
+    ASSERT_EQ(ps.velocity(i), ref.velocity(i));
     ASSERT_EQ(ps.rho[i], ref.rho[i]);
     ASSERT_EQ(ps.vel_prev[i], ref.vel_prev[i]);
     ASSERT_EQ(ps.rho_prev[i], ref.rho_prev[i]);
@@ -184,7 +184,7 @@ TEST(MpiDecomposition, NeighbourMigrationEqualsTheAllToAll) {
     // Compared on every rank, then agreed (an early return would leave the others waiting).
     bool same = a.size() == b.size() && a.total() == b.total();
     for (std::size_t i = 0; same && i < a.total(); ++i)
-      same = a.id[i] == b.id[i] && a.pos[i] == b.pos[i] && a.vel[i] == b.vel[i] &&
+      same = a.id[i] == b.id[i] && a.pos[i] == b.pos[i] && a.velocity(i) == b.velocity(i) &&
              a.rho[i] == b.rho[i];
     if (!same)
       std::cerr << "rank " << comm.rank() << ", round " << round << ": sizes " << a.size() << "/"
