@@ -21,9 +21,11 @@
 // Every dataset has a string attribute `units` (SI; "1" for counts, codes and text; in 2D
 // mass is per metre of depth, "kg/m").
 //   /particles/<step, 10 digits>   group; attributes time (double), step (int64), written last
-//       pos, vel (N x D double), rho, p, mass (N double), type (N uint8: the role, 0 fluid,
+//       pos (N x D double), vel (N x D float*), rho (N float*), p, mass (N double), type (N
+//                                  uint8: the role, 0 fluid,
 //                                  1 fixed wall, 2 moving wall, 3 floating),
 //       body (N uint16), id (N uint32) over the active particles only
+//       (* as stored: double in a -DSWELL_DOUBLE_STATE=ON build; solver/state/types.hpp)
 //
 // Checkpoint layout (a separate file, everything needed to continue a run bit for bit):
 //   /               attributes dim, n_active, total, case_identity, case_name, case_file,

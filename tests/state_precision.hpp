@@ -20,12 +20,13 @@ inline double stored_tol(double expected, double abs = 1e-15) {
 
 namespace swell {
 
-// What storing the velocities may add to a momentum drift over `steps` steps: every stored
-// velocity is rounded `roundings` times per step (symplectic: predictor and corrector), each
-// time by at most kStateEps / 2 of it; `scale` is sum m |v|. With a double state this is far
-// below the 1e-12 * scale that the exactly antisymmetric pair terms leave.
-inline double momentum_rounding(double scale, int steps, int roundings = 2) {
-  return steps * roundings * 0.5 * kStateEps * scale;
+// What storing the velocities may add to a momentum drift over `steps` steps: the velocity a
+// step ends with is rounded once when stored (symplectic: the corrector's v^n + dt a, from the
+// stored v^n; the predictor's rounded half-step velocity is not carried over; Verlet alike), by
+// at most kStateEps / 2 of it; `scale` is sum m |v|. With a double state this is far below the
+// 1e-12 * scale that the exactly antisymmetric pair terms leave.
+inline double momentum_rounding(double scale, int steps) {
+  return steps * 0.5 * kStateEps * scale;
 }
 
 }  // namespace swell

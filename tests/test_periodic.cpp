@@ -230,7 +230,19 @@ TEST(PeriodicRun, PerturbedBlockConservesMomentum) {
   double scale = 0.0;
   for (std::size_t i = 0; i < sim.particles().size(); ++i)
     scale += sim.particles().mass[i] * sim.particles().velocity(i).norm();
-  for (int s = 0; s < 200; ++s) sim.step();
+  for (int s = 0; s < 200; ++s) {
+    sim.step();
+    // The pair terms, images included, cancel: sum m a = 0 up to the summation order, every
+    // step (independent of how the velocities are stored).
+    const auto& q = sim.particles();
+    Vec<2> sum_ma = Vec<2>::Zero();
+    double abs_ma = 0.0;
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      sum_ma += q.mass[i] * sim.acceleration()[i];
+      abs_ma += q.mass[i] * sim.acceleration()[i].norm();
+    }
+    ASSERT_LT(sum_ma.norm(), 1e-12 * abs_ma) << "step " << s;
+  }
   const auto after = fluid_totals(sim.particles());
   EXPECT_EQ(sim.excluded().total(), 0u);
   EXPECT_EQ(after.count, before.count);

@@ -78,13 +78,17 @@ Result run_angular_momentum(const Options& opt) {
   const Drift lam = run(ViscosityModel::Laminar, false, steps, dp);
   const Drift kgc = run(ViscosityModel::Artificial, true, steps, dp);
   // Round-off: each step adds a few ulps of the momentum scale (pair forces cancel to the last
-  // bit only up to the order of summation); 1e-12 is ~1e4 ulps after hundreds of steps. Plus
-  // the rounding of the stored velocities (float unless SWELL_DOUBLE_STATE, types.hpp): two
-  // roundings per symplectic step, each within kStateEps / 2 of every velocity.
-  const double bound = 1e-12 + steps * kStateEps;
-  r.figures.push_back(at_most("artificial viscosity: linear momentum drift", av.linear, bound));
-  r.figures.push_back(at_most("artificial viscosity: angular momentum drift", av.angular, bound));
-  r.figures.push_back(at_most("laminar viscosity: linear momentum drift", lam.linear, bound));
+  // bit only up to the order of summation); 1e-12 is ~1e4 ulps after hundreds of steps. With
+  // velocities stored in float (types.hpp) the angular momentum also takes the velocities'
+  // rounding, up to kStateEps / 2 of each per step: that bound (1.8e-5 at 300 steps) is above
+  // the drift the kernel gradient correction causes, so there the 1e-12 is checked in a
+  // -DSWELL_DOUBLE_STATE=ON build (.ci/run). The linear drift of the symmetric disc stays at
+  // round-off in both.
+  const double angular_bound = 1e-12 + steps * 0.5 * kStateEps;
+  r.figures.push_back(at_most("artificial viscosity: linear momentum drift", av.linear, 1e-12));
+  r.figures.push_back(
+      at_most("artificial viscosity: angular momentum drift", av.angular, angular_bound));
+  r.figures.push_back(at_most("laminar viscosity: linear momentum drift", lam.linear, 1e-12));
   r.figures.push_back(report("laminar viscosity: angular momentum drift", lam.angular));
   r.figures.push_back(report("kernel gradient correction: linear momentum drift", kgc.linear));
   r.figures.push_back(report("kernel gradient correction: angular momentum drift", kgc.angular));
@@ -98,9 +102,10 @@ Result run_angular_momentum(const Options& opt) {
             " symplectic steps (rho0 = 1000, c0 = 20 m/s, alpha = 0.1, nu = 1e-4 m^2/s). "
             "Drifts are the largest over the run of |P - P0| / sum m|v| and "
             "|L - L0| / sum m |x||v|. Artificial viscosity acts along r_ab: both conserved to "
-            "round-off (bound: 1e-12 plus steps x the storage's epsilon, " +
-            std::to_string(kStateEps) +
-            ", for the velocities' rounding when stored). The laminar (Lo & Shao) term acts along "
+            "round-off (the angular bound adds steps x half the storage's epsilon for the "
+            "velocities' rounding when stored: " +
+            (kStateEps > 1e-10 ? std::string("float, 6e-8") : std::string("double, 1.1e-16")) +
+            "). The laminar (Lo & Shao) term acts along "
             "v_ab: a torque on every pair "
             "whose v_ab is not along r_ab, so the angular momentum of a rotating patch drifts. "
             "The kernel gradient correction breaks the pair antisymmetry (L_a != L_b).";

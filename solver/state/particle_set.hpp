@@ -60,10 +60,10 @@ struct FieldInfo {
   X(normal_ref, V, FieldClass::Constant, nullptr, true)
 
 // Arrays that are dead while the particles are reordered and may serve as the reorder's
-// scratch: the vector one for the position-like fields, the double ones for the scalar fields
-// (the Simulation's force buffers at the start of an evaluation), the uint32 one for the ids
-// (the cell grid's cell ids, recomputed after the reorder). Lending them saves the set's own
-// scratch (in 3D 68 of its ~78 bytes per particle).
+// scratch: the vector one for the double vector fields, the double ones for the double scalar
+// fields (the Simulation's force buffers at the start of an evaluation), the uint32 one for
+// the ids (the cell grid's cell ids, recomputed after the reorder); the float fields go through
+// their bytes afterwards (permute_raw). Lending them saves the set's own scratch.
 template <int D>
 struct LentScratch {
   std::vector<Vec<D>>* vec = nullptr;
@@ -202,7 +202,8 @@ struct ParticleSet {
   // region), then swaps them in; the arrays left behind are the next pass's scratch. The
   // scratch arrays are the set's own (two per type) unless `lent` offers arrays that are dead
   // during this reorder: then those are used instead (they come back holding old field
-  // contents, resized to total()) and the set's own are never allocated for that type.
+  // contents and bytes, resized to total()) and the set's own are never allocated for that
+  // type. The fields without typed scratch (float) follow through bytes (permute_raw).
   void permute(const std::vector<std::uint32_t>& order, const LentScratch<D>& lent = {}) {
     const long n = static_cast<long>(order.size());
     const std::size_t total_n = pos.size();

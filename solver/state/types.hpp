@@ -13,7 +13,7 @@ using Vec = Eigen::Matrix<double, D, 1>;
 // Storage precision of the evolved velocity and density and of their integrator copies (issue
 // #16, leaner state): float, as DualSPHysics keeps them, with positions, masses and every
 // computation in double (values are widened where they are read and rounded once where the
-// integrator stores them). 16 B per particle less in 2D, 32 B in 3D. A build with
+// integrator stores them). 24 B per particle less in 2D, 32 B in 3D. A build with
 // -DSWELL_DOUBLE_STATE=ON keeps them in double (the state before 2026-12-05, for comparisons).
 #ifdef SWELL_DOUBLE_STATE
 using StateReal = double;
