@@ -12,6 +12,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include "bc/dbc.hpp"
 #include "io/case_file.hpp"
@@ -23,6 +24,7 @@
 #include "solver/time/simulation.hpp"
 #include "tests/case_run.hpp"
 #include "tests/state_precision.hpp"
+#include "verify/pair_rounding.hpp"
 
 namespace swell {
 namespace {
@@ -181,8 +183,22 @@ void check_uniform_stream(IntegratorType integ) {
   // boundary apart at once. With the images the periodic lattice is an exact equilibrium.
   const double rho = 1010.0;
   Simulation<D> sim(p, lattice<D>(n, dp, rho, u), make_dbc<D>());
+  // The lattice's pair terms cancel exactly in exact arithmetic; the pair loop's float
+  // rounding (verify/pair_rounding.hpp) leaves a residual acceleration, and a stored velocity
+  // that changes is rounded to float (half an ulp per step): the bound on |v - u| adds both
+  // over the run (0 and 1.1e-16 in the double-state build).
+  const double per_step_storage = 0.5 * kStateEps * u.norm() * (1.0 + 1e-6);
+  double bound = 0.0;
   // Until every particle crossed the box along x at least once.
-  while (sim.time() < 1.2 * n * dp / u[0]) sim.step();
+  while (sim.time() < 1.2 * n * dp / u[0]) {
+    const PairRounding pr = pair_rounding<D>(sim.particles(), sim.params());
+    const double acc = *std::max_element(pr.acc.begin(), pr.acc.end());
+    sim.step();
+    // 2 dt: Verlet's step is v_prev + 2 dt a. First order; the lattice's amplification of
+    // round-off (~6x per 500 steps, above) is not in it and is covered by the majorant's
+    // slack (the measured |v - u| is ~1e-3 of the bound), not derived.
+    bound += 2.0 * sim.dt() * std::sqrt(double(D)) * acc + (acc > 0.0 ? per_step_storage : 0.0);
+  }
   const ParticleSet<D>& ps = sim.particles();
   EXPECT_EQ(ps.n_ghost, 0u);  // none between steps
   EXPECT_EQ(sim.excluded().total(), 0u);
@@ -200,7 +216,7 @@ void check_uniform_stream(IntegratorType integ) {
   }
   std::cout << "  " << D << "D uniform stream after " << sim.steps()
             << " steps: max |v - u| = " << dv << ", max |rho/rho_initial - 1| = " << drho << "\n";
-  EXPECT_LT(dv, 1e-9);
+  EXPECT_LT(dv, 1e-9 + bound);
   EXPECT_LT(drho, 1e-12);
 }
 
@@ -230,10 +246,13 @@ TEST(PeriodicRun, PerturbedBlockConservesMomentum) {
   double scale = 0.0;
   for (std::size_t i = 0; i < sim.particles().size(); ++i)
     scale += sim.particles().mass[i] * sim.particles().velocity(i).norm();
+  double pair_drift = 0.0;
   for (int s = 0; s < 200; ++s) {
     sim.step();
     // The pair terms, images included, cancel: sum m a = 0 up to the summation order, every
-    // step (independent of how the velocities are stored).
+    // step (independent of how the velocities are stored), and up to the pair loop's float
+    // rounding (verify/pair_rounding.hpp; images are stored after the particles, so the bound
+    // sees them).
     const auto& q = sim.particles();
     Vec<2> sum_ma = Vec<2>::Zero();
     double abs_ma = 0.0;
@@ -241,14 +260,16 @@ TEST(PeriodicRun, PerturbedBlockConservesMomentum) {
       sum_ma += q.mass[i] * sim.acceleration()[i];
       abs_ma += q.mass[i] * sim.acceleration()[i].norm();
     }
-    ASSERT_LT(sum_ma.norm(), 1e-12 * abs_ma) << "step " << s;
+    const double pair = std::sqrt(2.0) * pair_rounding<2>(q, sim.params()).momentum(q);
+    ASSERT_LT(sum_ma.norm(), 1e-12 * abs_ma + pair) << "step " << s;
+    pair_drift += sim.dt() * pair;
   }
   const auto after = fluid_totals(sim.particles());
   EXPECT_EQ(sim.excluded().total(), 0u);
   EXPECT_EQ(after.count, before.count);
   const double drift = (after.momentum - before.momentum).norm();
   std::cout << "  periodic momentum drift over 200 steps: " << drift / scale << " of sum m|v|\n";
-  EXPECT_LT(drift, 1e-12 * scale + momentum_rounding(scale, 200));
+  EXPECT_LT(drift, 1e-12 * scale + momentum_rounding(scale, 200) + pair_drift);
 }
 
 // A perturbed periodic block run twice, the second time with every particle moved by a third
@@ -276,6 +297,12 @@ ParticleSet<2> perturbed_block(int n, double dp, const Vec<2>& shift) {
 }
 
 TEST(PeriodicRun, CorrectionsAreTranslationInvariant) {
+  // Shifting the particles changes the double rounding of r_ab, which the float pair loop can
+  // turn into a float ulp; the perturbed block amplifies that. Round-off-level invariance is
+  // therefore checked in the double-state build (.ci/run runs PeriodicRun.* there).
+  if (std::is_same_v<PairReal, float>)
+    GTEST_SKIP()
+        << "translation invariance to 1e-9 is checked in the -DSWELL_DOUBLE_STATE=ON build";
   const int n = 24;
   const double dp = 0.01, L = n * dp;
   SolverParams p = periodic_params<2>(n, dp);

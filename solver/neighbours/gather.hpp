@@ -15,8 +15,9 @@
 
 namespace swell {
 
-// Neighbour lists are padded to a multiple of kPairLanes entries so the evaluator's SIMD loop
-// has no scalar remainder: 8 is the AVX-512 width in doubles (what -march=native builds use
+// Neighbour lists are padded to a multiple of kPairLanes entries (2 kPairLanes = 16 floats for
+// a float evaluator) so the evaluator's SIMD loop has no scalar remainder: 8 is the AVX-512
+// width in doubles (what -march=native builds use
 // here, -fopt-info-vec: "loop vectorized using 64 byte vectors") and a multiple of the AVX2
 // width (4). The packing pass itself writes 8 entries at a time (AVX-512) or one (scalar).
 inline constexpr std::uint32_t kPairLanes = 8;
@@ -36,8 +37,8 @@ struct WallsSeeFluid {
 // Appends to nb[k...] the entries of the particles b in [b0, b1) within the kernel support of
 // xa (b != a; which b per the selection policy) and returns the new count. P holds the
 // positions (D doubles a particle), role the roles. nb must have room for (b1 - b0) + 8 more
-// entries past k. The AVX-512 path tests 8 candidates at once and packs the hits with a
-// register compress; the scalar path is the same test.
+// entries past k (16 for the float form below). The AVX-512 path tests 8 candidates at once and
+// packs the hits with a register compress; the scalar path is the same test.
 template <int D, class Select>
 inline std::uint32_t gather_neighbours(const double* P, const Role* role, const double* xa,
                                        bool fluid_a, double support2, std::uint32_t b0,
@@ -109,6 +110,95 @@ inline std::uint32_t gather_neighbours(const double* P, const Role* role, const 
     const bool fluid_b = role[b] == Role::Fluid;
     nb[k] = b | (fluid_b ? 0u : kWallBit);
     k += (r2 < support2) & (r2 > 1e-18) & (Select::kWallSeesWalls | fluid_a | fluid_b);
+  }
+#endif
+  return k;
+}
+
+// The float form of the test (issue #16: 16 candidates per AVX-512 instruction instead of 8),
+// on a float copy of the positions taken relative to a fixed origin (the pair driver's
+// NeighbourLists::pos). support2 must hold a margin for the copy's rounding: the test may then
+// admit a few pairs just beyond the support, never drop one inside it, and the evaluator
+// gives those pairs exactly zero (its own test on r_ab from the double positions decides).
+// Every b with r2 < support2 in float is admitted, the particle itself and particles whose
+// float copies coincide with it included (no lower cut: such a pair may be a real neighbour a
+// few micrometres away far from the origin): the evaluator gives the self pair exactly zero,
+// as it does the padding.
+template <int D, class Select>
+inline std::uint32_t gather_neighbours(const float* P, const Role* role, const float* xa,
+                                       bool fluid_a, float support2, std::uint32_t b0,
+                                       std::uint32_t b1, std::uint32_t* nb, std::uint32_t k) {
+  std::uint32_t b = b0;
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__)
+  static_assert(D == 2 || D == 3, "the AVX-512 path handles 2D and 3D");
+  const __m512 s2 = _mm512_set1_ps(support2), zero = _mm512_setzero_ps();
+  __m512 xav[D];
+  for (int d = 0; d < D; ++d) xav[d] = _mm512_set1_ps(xa[d]);
+  const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m512i wall_bit = _mm512_set1_epi32(static_cast<int>(kWallBit));
+  const __m128i fluid_role = _mm_set1_epi8(static_cast<char>(Role::Fluid));
+  for (; b < b1; b += 16) {
+    const std::uint32_t left = b1 - b;
+    const __mmask16 valid = left >= 16 ? __mmask16(0xFFFF) : __mmask16((1u << left) - 1u);
+    // The 16 candidates' coordinates are D x 16 consecutive floats: load them (masked at the
+    // end of the range) and split them by axis with two-source permutes.
+    const float* p = P + static_cast<std::size_t>(b) * D;
+    const unsigned nf = (left >= 16 ? 16u : left) * D;  // floats to read
+    auto part = [nf](unsigned from) {
+      return nf >= from + 16 ? __mmask16(0xFFFF)
+             : nf > from     ? __mmask16((1u << (nf - from)) - 1u)
+                             : __mmask16(0);
+    };
+    __m512 xb[D];
+    const __m512 c0 = _mm512_maskz_loadu_ps(part(0), p),
+                 c1 = _mm512_maskz_loadu_ps(part(16), p + 16);
+    if constexpr (D == 2) {
+      xb[0] = _mm512_permutex2var_ps(
+          c0, _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30), c1);
+      xb[1] = _mm512_permutex2var_ps(
+          c0, _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31), c1);
+    } else {
+      // x: floats 0, 3, .., 45 of the 48; the first 11 (y: 11, z: 10) lie in c0 and c1.
+      const __m512 c2 = _mm512_maskz_loadu_ps(part(32), p + 32);
+      const __m512 tx = _mm512_permutex2var_ps(
+          c0, _mm512_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0, 0, 0), c1);
+      const __m512 ty = _mm512_permutex2var_ps(
+          c0, _mm512_setr_epi32(1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 0, 0, 0, 0, 0), c1);
+      const __m512 tz = _mm512_permutex2var_ps(
+          c0, _mm512_setr_epi32(2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0, 0, 0, 0, 0, 0), c1);
+      xb[0] = _mm512_permutex2var_ps(
+          tx, _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 20, 23, 26, 29), c2);
+      xb[1] = _mm512_permutex2var_ps(
+          ty, _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30), c2);
+      xb[2] = _mm512_permutex2var_ps(
+          tz, _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31), c2);
+    }
+    __m512 r2 = zero;
+    for (int d = 0; d < D; ++d) {
+      const __m512 dx = _mm512_sub_ps(xav[d], xb[d]);
+      r2 = _mm512_fmadd_ps(dx, dx, r2);
+    }
+    const __m128i kb = _mm_maskz_loadu_epi8(valid, role + b);
+    const __mmask16 fluid_b = _mm_cmpeq_epi8_mask(kb, fluid_role);
+    __mmask16 m = valid & _mm512_cmp_ps_mask(r2, s2, _CMP_LT_OQ);
+    if constexpr (!Select::kWallSeesWalls) {
+      if (!fluid_a) m &= fluid_b;
+    }
+    __m512i idx = _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(b)), lane);
+    idx = _mm512_mask_or_epi32(idx, static_cast<__mmask16>(~fluid_b), idx, wall_bit);
+    _mm512_storeu_si512(nb + k, _mm512_maskz_compress_epi32(m, idx));
+    k += static_cast<std::uint32_t>(__builtin_popcount(m));
+  }
+#else
+  for (; b < b1; ++b) {
+    float r2 = 0.0f;
+    for (int d = 0; d < D; ++d) {
+      const float dx = xa[d] - P[b * D + d];
+      r2 += dx * dx;
+    }
+    const bool fluid_b = role[b] == Role::Fluid;
+    nb[k] = b | (fluid_b ? 0u : kWallBit);
+    k += (r2 < support2) & (Select::kWallSeesWalls | fluid_a | fluid_b);
   }
 #endif
   return k;

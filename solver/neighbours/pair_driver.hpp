@@ -5,14 +5,15 @@
 // atomics and no scatter.
 //
 // Evaluator interface (all inline, no virtual calls):
+//   using Real = ...;                            the pair terms' arithmetic type (double/float)
 //   using Centre = ...;                          what pass 2 needs of particle a
 //   Centre centre(std::uint32_t a, bool fluid_a) const;
-//   void pair(const Centre&, std::uint32_t entry, double& s0, double& s1, double& s2,
-//             double& s3, double& mx) const;   one pair; entry = b | kWallBit for a wall b;
+//   void pair(const Centre&, std::uint32_t entry, Real& s0, Real& s1, Real& s2,
+//             Real& s3, Real& mx) const;   one pair; entry = b | kWallBit for a wall b;
 //                                              s0..s3 are sums, mx a maximum; a padding entry
 //                                              (b == a) must contribute exactly nothing
-//   double finish(std::uint32_t a, const Centre&, double s0, double s1, double s2, double s3,
-//                 double mx);                  stores a's results, returns its share of the
+//   double finish(std::uint32_t a, const Centre&, Real s0, Real s1, Real s2, Real s3,
+//                 Real mx);                  stores a's results, returns its share of the
 //                                              run-wide maximum (e.g. the viscous dt signal)
 //   void idle(std::uint32_t a);                  a in a skipped (dry) cell
 // Each particle's sums run over its neighbours in a fixed order (the cell order), so results do
@@ -23,7 +24,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -33,8 +36,21 @@
 
 namespace swell {
 
-// One neighbour list per thread, reused across particles and steps (grows, never shrinks).
-using NeighbourLists = std::vector<std::vector<std::uint32_t>>;
+// The driver's reusable scratch (grows, never shrinks): one neighbour list per thread and, for
+// an evaluator whose arithmetic is float, the float copy of the positions its gather tests.
+struct NeighbourLists {
+  std::vector<std::vector<std::uint32_t>> lists;
+  std::vector<float> pos;  // (x - origin) rounded to float, D per stored particle
+};
+
+// The margin the float gather adds to the support: the copy rounds each coordinate by at most
+// X 2^-24 (X: the largest |x - origin|), so a difference is off by 2 X 2^-24 per axis plus its
+// own rounding, and r^2 by a few roundings more: twice that bound for the coordinates' part,
+// several times for the rest, so no pair inside the support is ever dropped (the evaluator
+// zeroes the few admitted beyond it).
+inline double float_gather_margin(int dims, double extent, double support) {
+  return (4.0 * std::sqrt(static_cast<double>(dims)) * extent + 16.0 * support) * 0x1p-24;
+}
 
 // Runs the evaluator over every active particle's neighbours within `support` (each thread on
 // its own copy of it: evaluators are small values holding parameters and array pointers);
@@ -46,10 +62,33 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
   const double support2 = support * support;
   const long ncells = static_cast<long>(grid.num_cells());
   const int nthreads = omp_get_max_threads();
-  if (static_cast<int>(lists.size()) < nthreads) lists.resize(nthreads);
+  if (static_cast<int>(lists.lists.size()) < nthreads) lists.lists.resize(nthreads);
   const double* P = ps.pos.data()->data();
   const Role* role = ps.role.data();
   double run_max = 0.0;
+  // A float evaluator gathers on a float copy of the positions, relative to the grid's lower
+  // corner (periodic and halo images lie within a support of the domain).
+  constexpr bool kFloatGather = std::is_same_v<typename Evaluator::Real, float>;
+  const Vec<D> origin = grid.domain_min();
+  float support2f = 0.0f;
+  if constexpr (kFloatGather) {
+    const std::size_t ns = ps.stored();
+    if (lists.pos.size() < ns * D) lists.pos.resize(ns * D + ns * D / 8);  // rare, amortised
+    float* F = lists.pos.data();
+    // Candidates are active particles (inside the domain) and images (within a cell of it).
+    const double extent = (grid.domain_max() - origin).maxCoeff() + 2.0 * grid.cell_size();
+    const double s = support + float_gather_margin(D, extent, support);
+    support2f = static_cast<float>(s * s);
+    // Active particles and images only: the excluded ones (between them) are never candidates
+    // and may hold values float cannot represent.
+    const long na = static_cast<long>(ps.size()), gb = static_cast<long>(ps.ghost_begin());
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < static_cast<long>(ns); ++i) {
+      if (i >= na && i < gb) continue;
+      for (int d = 0; d < D; ++d) F[i * D + d] = static_cast<float>(P[i * D + d] - origin[d]);
+    }
+  }
+  const float* F = lists.pos.data();
 
 #pragma omp parallel reduction(max : run_max)
   {
@@ -57,7 +96,7 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
     // array pointers in registers across the SIMD loop instead of reloading them per pair
     // (the reduction stores could otherwise alias them): ~6 % on B3D.
     Evaluator local = ev;
-    std::vector<std::uint32_t>& nbv = lists[omp_get_thread_num()];
+    std::vector<std::uint32_t>& nbv = lists.lists[omp_get_thread_num()];
 #pragma omp for schedule(dynamic, 16)
     for (long c = 0; c < ncells; ++c) {
       const std::uint32_t cb = grid.begin(c), ce = grid.end(c);
@@ -73,26 +112,39 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
         ranges[nr++] = {b, e};
         candidates += e - b;
       });
+      // Room for the 16-entry stores of the float gather and the padding.
       if (nbv.size() < candidates + 2 * kPairLanes)
         nbv.resize(candidates + candidates / 2 + 2 * kPairLanes);  // rare, amortised
       std::uint32_t* nb = nbv.data();
 
       for (std::uint32_t a = cb; a < ce; ++a) {
-        double xa[3] = {0.0, 0.0, 0.0};
-        for (int d = 0; d < D; ++d) xa[d] = P[a * D + d];
         const bool fluid_a = is_fluid(role[a]);
         // Pass 1: neighbour list.
         std::uint32_t k = 0;
-        for (int r = 0; r < nr; ++r)
-          k = gather_neighbours<D, Select>(P, role, xa, fluid_a, support2, ranges[r].first,
-                                           ranges[r].second, nb, k);
+        if constexpr (kFloatGather) {
+          float xa[3] = {0.0f, 0.0f, 0.0f};
+          for (int d = 0; d < D; ++d) xa[d] = F[a * D + d];
+          for (int r = 0; r < nr; ++r)
+            k = gather_neighbours<D, Select>(F, role, xa, fluid_a, support2f, ranges[r].first,
+                                             ranges[r].second, nb, k);
+        } else {
+          double xa[3] = {0.0, 0.0, 0.0};
+          for (int d = 0; d < D; ++d) xa[d] = P[a * D + d];
+          for (int r = 0; r < nr; ++r)
+            k = gather_neighbours<D, Select>(P, role, xa, fluid_a, support2, ranges[r].first,
+                                             ranges[r].second, nb, k);
+        }
         // Pad to a whole number of SIMD lanes with the particle itself: the evaluator gives a
-        // coincident pair exactly zero, so the vector loop needs no scalar remainder.
-        while (k % kPairLanes) nb[k++] = a;
+        // coincident pair exactly zero, so the vector loop needs no scalar remainder (16 lanes
+        // for a float evaluator: with 8, 2D lists of ~25 neighbours spent ~40 % of the loop's
+        // time in the remainder's scalar code).
+        constexpr std::uint32_t kLanes = kFloatGather ? 2 * kPairLanes : kPairLanes;
+        while (k % kLanes) nb[k++] = a;
 
         // Pass 2: pair terms in one SIMD loop (gathers, selects instead of branches).
         const typename Evaluator::Centre ca = local.centre(a, fluid_a);
-        double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, mx = 0.0;
+        using Real = typename Evaluator::Real;  // the sums' type
+        Real s0 = 0, s1 = 0, s2 = 0, s3 = 0, mx = 0;
 #pragma omp simd reduction(+ : s0, s1, s2, s3) reduction(max : mx)
         for (std::uint32_t j = 0; j < k; ++j) local.pair(ca, nb[j], s0, s1, s2, s3, mx);
         run_max = std::max(run_max, local.finish(a, ca, s0, s1, s2, s3, mx));

@@ -47,9 +47,11 @@ struct WendlandC2 {
     return -5.0 * a * t * t * t * inv_h * inv_h;
   }
   // f(r) for 0 < r < support(), without branches (the pair loop's SIMD form).
-  double fs(double r) const {
-    const double t = 1.0 - 0.5 * r * inv_h;
-    return -5.0 * a * t * t * t * inv_h * inv_h;
+  // T: the pair loop's arithmetic type (PairReal); the parameters are rounded to it.
+  template <class T>
+  T fs(T r) const {
+    const T t = T(1) - T(0.5) * r * T(inv_h);
+    return T(-5.0) * T(a) * t * t * t * T(inv_h) * T(inv_h);
   }
   // dW/dh at fixed r (the grad-h term of variable-h SPH). W = h^-D g(r/h) gives
   // dW/dh = -(D W + q dW/dq) / h = -(D w(r) + r^2 f(r)) / h.
@@ -88,10 +90,11 @@ struct CubicSpline {
     const double t = 2.0 - q;
     return -0.75 * a * t * t * inv_h * inv_h / q;
   }
-  double fs(double r) const {
-    const double q = r * inv_h, t = 2.0 - q;
-    const double inner = -3.0 + 2.25 * q, outer = -0.75 * t * t / q;
-    return a * (q < 1.0 ? inner : outer) * inv_h * inv_h;
+  template <class T>
+  T fs(T r) const {
+    const T q = r * T(inv_h), t = T(2) - q;
+    const T inner = T(-3.0) + T(2.25) * q, outer = T(-0.75) * t * t / q;
+    return T(a) * (q < T(1) ? inner : outer) * T(inv_h) * T(inv_h);
   }
   // dW/dh at fixed r, as WendlandC2::dwdh (the grad-h term; Price 2012, JCP 231:759, eq. 31).
   double dwdh(double r) const { return -(D * w(r) + r * r * f(r)) * inv_h; }
@@ -115,7 +118,10 @@ struct QuinticSpline {
   double support() const { return kSupport * h; }
 
   static double p5(double x) { return x > 0.0 ? x * x * x * x * x : 0.0; }
-  static double p4(double x) { return x > 0.0 ? x * x * x * x : 0.0; }
+  template <class T>
+  static T p4(T x) {
+    return x > T(0) ? x * x * x * x : T(0);
+  }
 
   double w(double r) const {
     const double q = r * inv_h;
@@ -132,10 +138,11 @@ struct QuinticSpline {
     const double dwdq = -5.0 * (p4(3.0 - q) - 6.0 * p4(2.0 - q) + 15.0 * p4(1.0 - q));
     return a * dwdq * inv_h * inv_h / q;
   }
-  double fs(double r) const {  // r > 0 (the pair loop drops coincident pairs)
-    const double q = r * inv_h;
-    const double dwdq = -5.0 * (p4(3.0 - q) - 6.0 * p4(2.0 - q) + 15.0 * p4(1.0 - q));
-    return a * dwdq * inv_h * inv_h / q;
+  template <class T>
+  T fs(T r) const {  // r > 0 (the pair loop drops coincident pairs)
+    const T q = r * T(inv_h);
+    const T dwdq = T(-5.0) * (p4(T(3) - q) - T(6) * p4(T(2) - q) + T(15) * p4(T(1) - q));
+    return T(a) * dwdq * T(inv_h) * T(inv_h) / q;
   }
 };
 
@@ -169,9 +176,10 @@ struct Gaussian {
     if (q >= 3.0) return 0.0;
     return -2.0 * a * std::exp(-q * q) * inv_h * inv_h;
   }
-  double fs(double r) const {
-    const double q = r * inv_h;
-    return -2.0 * a * std::exp(-q * q) * inv_h * inv_h;
+  template <class T>
+  T fs(T r) const {
+    const T q = r * T(inv_h);
+    return T(-2.0) * T(a) * std::exp(-q * q) * T(inv_h) * T(inv_h);
   }
 };
 

@@ -90,6 +90,7 @@ struct ShiftingWork {
 template <int D, class Kernel, bool kWalls = false>
 class ShiftingEvaluator {
  public:
+  using Real = double;
   struct Centre {
     double x0, x1, x2;
   };

@@ -2,7 +2,9 @@
 // equation, built from the value types of this folder (kernel, viscosity, density diffusion;
 // the EoS enters through the per-particle P/rho^2 and c buffers). Run by the pair driver
 // (neighbours/pair_driver.hpp). No intrinsics here: the body is plain arithmetic the compiler
-// vectorises (check -fopt-info-vec after a change; ARCHITECTURE.md).
+// vectorises (check -fopt-info-vec after a change; ARCHITECTURE.md). Its arithmetic is
+// PairReal (types.hpp: float unless the double-state build), with r_ab taken from the double
+// positions; the rates are stored in double.
 //
 // Equations (DESIGN.md, defaults as DualSPHysics):
 //   drho_a/dt = sum_b m_b v_ab . gradW_ab + density diffusion (fluid-fluid pairs)
@@ -14,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "solver/neighbours/gather.hpp"
 #include "solver/physics/density_diffusion.hpp"
@@ -33,9 +36,11 @@ template <int D, class Kernel, ViscosityModel VM, class Select, bool kTait7 = fa
           bool kOneMass = false>
 class WcsphEvaluator {
  public:
+  using Real = PairReal;  // the pair terms' arithmetic and the sums' type (types.hpp)
   struct Centre {
-    double x0, x1, x2, v0, v1, v2;
-    double rho, prs, cs, dd_weight;
+    double x0, x1, x2;  // positions stay double: r_ab is taken in double
+    Real v0, v1, v2;
+    Real rho, prs, cs, dd_weight;
     bool fluid;
   };
 
@@ -43,19 +48,24 @@ class WcsphEvaluator {
   WcsphEvaluator(const ParticleSet<D>& ps, const SolverParams& prm, const Kernel& kernel,
                  const double* prs, const double* cs, double* drho, Vec<D>* ace)
       : kernel_(kernel),
-        av_{prm.alpha, prm.h},
-        lam_{4.0 * prm.nu},
-        dd_{prm.diffusion != DiffusionModel::None ? prm.delta * prm.h * prm.c0 : 0.0,
-            prm.diffusion == DiffusionModel::Fourtakas ? prm.rho0 / (prm.c0 * prm.c0) : 0.0},
-        eta2_(prm.eta2()),
-        c0_(prm.c0),
-        inv_rho0_(1.0 / prm.rho0),
-        g_(prm.gravity.template head<D>()),
+        av_{static_cast<Real>(prm.alpha), static_cast<Real>(prm.h)},
+        lam_{static_cast<Real>(4.0 * prm.nu)},
+        dd_{static_cast<Real>(prm.diffusion != DiffusionModel::None ? prm.delta * prm.h * prm.c0
+                                                                    : 0.0),
+            static_cast<Real>(
+                prm.diffusion == DiffusionModel::Fourtakas ? prm.rho0 / (prm.c0 * prm.c0) : 0.0)},
+        support2_(static_cast<Real>(kernel.support() * kernel.support())),
+        eta2_(static_cast<Real>(prm.eta2())),
+        c0_(static_cast<Real>(prm.c0)),
+        inv_rho0_(static_cast<Real>(1.0 / prm.rho0)),
+        g_{static_cast<Real>(prm.gravity[0]), static_cast<Real>(prm.gravity[1]),
+           static_cast<Real>(prm.gravity[2])},
+        gd_(prm.gravity.template head<D>()),
         P_(ps.pos.data()->data()),
         U_(ps.vel.data()->data()),
         rho_(ps.rho.data()),
         mass_(ps.mass.data()),
-        m0_(ps.mass.empty() ? 0.0 : ps.mass.front()),
+        m0_(ps.mass.empty() ? Real(0) : static_cast<Real>(ps.mass.front())),
         prs_(prs),
         cs_(cs),
         drho_(drho),
@@ -66,18 +76,18 @@ class WcsphEvaluator {
     c.x0 = P_[a * D];
     c.x1 = P_[a * D + 1];
     c.x2 = D == 3 ? P_[a * D + D - 1] : 0.0;
-    c.v0 = U_[a * D];
-    c.v1 = U_[a * D + 1];
-    c.v2 = D == 3 ? U_[a * D + D - 1] : 0.0;
-    c.rho = rho_[a];
-    c.prs = prs_[a];
+    c.v0 = static_cast<Real>(U_[a * D]);
+    c.v1 = static_cast<Real>(U_[a * D + 1]);
+    c.v2 = D == 3 ? static_cast<Real>(U_[a * D + D - 1]) : Real(0);
+    c.rho = static_cast<Real>(rho_[a]);
+    c.prs = static_cast<Real>(prs_[a]);
     if constexpr (VM != ViscosityModel::Artificial) {
-      c.cs = 0.0;  // not used (and the buffer is not filled)
+      c.cs = 0;  // not used (and the buffer is not filled)
     } else if constexpr (kTait7) {
-      const double ra = c.rho * inv_rho0_;
+      const Real ra = c.rho * inv_rho0_;
       c.cs = c0_ * ra * ra * ra;
     } else {
-      c.cs = cs_[a];
+      c.cs = static_cast<Real>(cs_[a]);
     }
     c.dd_weight = dd_.weight(fluid_a || Select::kWallsDiffuse);
     c.fluid = fluid_a;
@@ -87,40 +97,49 @@ class WcsphEvaluator {
   // s0: drho/dt, s1..s3: acceleration, mx: viscous time-step signal. In 2D the third axis is
   // not used and compiles away. Real pairs have r2 > 1e-18 (gather); a padding entry
   // (r_ab = v_ab = 0) gets a finite kernel factor, so every term is exactly zero for it.
-  void pair(const Centre& a, std::uint32_t e, double& drho, double& ac0, double& ac1, double& ac2,
-            double& vdt) const {
+  void pair(const Centre& a, std::uint32_t e, Real& drho, Real& ac0, Real& ac1, Real& ac2,
+            Real& vdt) const {
     const std::uint32_t b = e & ~kWallBit;
-    const double fluid_b = (e & kWallBit) ? 0.0 : 1.0;
-    const double r0 = a.x0 - P_[b * D], r1 = a.x1 - P_[b * D + 1];
-    const double r2c = D == 3 ? a.x2 - P_[b * D + D - 1] : 0.0;
-    const double w0 = a.v0 - U_[b * D], w1 = a.v1 - U_[b * D + 1];
-    const double w2 = D == 3 ? a.v2 - U_[b * D + D - 1] : 0.0;
-    const double r2 = r0 * r0 + r1 * r1 + r2c * r2c;
-    const double vr = w0 * r0 + w1 * r1 + w2 * r2c;                                 // v_ab . r_ab
-    const double grx = g_[0] * r0 + g_[1] * r1 + (D == 3 ? g_[D - 1] * r2c : 0.0);  // g . r_ab
+    const Real fluid_b = (e & kWallBit) ? Real(0) : Real(1);
+    // r_ab in double, then rounded: its relative error is Real's, whatever the coordinates.
+    const Real r0 = static_cast<Real>(a.x0 - P_[b * D]);
+    const Real r1 = static_cast<Real>(a.x1 - P_[b * D + 1]);
+    const Real r2c = D == 3 ? static_cast<Real>(a.x2 - P_[b * D + D - 1]) : Real(0);
+    const Real w0 = a.v0 - static_cast<Real>(U_[b * D]);
+    const Real w1 = a.v1 - static_cast<Real>(U_[b * D + 1]);
+    const Real w2 = D == 3 ? a.v2 - static_cast<Real>(U_[b * D + D - 1]) : Real(0);
+    const Real r2 = r0 * r0 + r1 * r1 + r2c * r2c;
+    const Real vr = w0 * r0 + w1 * r1 + w2 * r2c;                                     // v_ab . r_ab
+    const Real grx = g_[0] * r0 + g_[1] * r1 + (D == 3 ? g_[D - 1] * r2c : Real(0));  // g . r_ab
     // gradW_ab = r_ab fr
-    const double fr = kernel_.fs(std::sqrt(std::max(r2, 1e-18)));
-    const double m_b = kOneMass ? m0_ : mass_[b], rho_b = rho_[b];
-    const double inv_r2e = 1.0 / (r2 + eta2_);
-    const double r_dot_gradw = r2 * fr;
+    // The float gather admits a few pairs just beyond the support (its margin): this test on
+    // r_ab from the double positions decides, the same for (a, b) and (b, a). (A product, not
+    // a branch: the kernel's division must stay unconditional for the loop to vectorise.)
+    const Real inside = std::is_same_v<Real, float> ? static_cast<Real>(r2 < support2_) : Real(1);
+    const Real fr = kernel_.fs(std::sqrt(std::max(r2, Real(1e-18)))) * inside;
+    const Real m_b = kOneMass ? m0_ : static_cast<Real>(mass_[b]);
+    const Real rho_b = static_cast<Real>(rho_[b]);
+    const Real inv_r2e = Real(1) / (r2 + eta2_);
+    const Real r_dot_gradw = r2 * fr;
     drho += m_b * fr * vr;  // m_b v_ab . gradW_ab
     // Approaching pairs: the viscous time-step signal and Monaghan's Pi_ab.
-    const double mu = av_.mu(vr, inv_r2e);
+    const Real mu = av_.mu(vr, inv_r2e) * inside;  // the time-step signal too (1 in double)
     vdt = vdt > -mu ? vdt : -mu;
-    double pterm = a.prs + prs_[b];
+    Real pterm = a.prs + static_cast<Real>(prs_[b]);
     if constexpr (VM == ViscosityModel::Artificial) {
-      double cs_b;
+      Real cs_b;
       if constexpr (kTait7) {
-        const double rb = rho_b * inv_rho0_;
+        const Real rb = rho_b * inv_rho0_;
         cs_b = c0_ * rb * rb * rb;
       } else {
-        cs_b = cs_[b];
+        cs_b = static_cast<Real>(cs_[b]);
       }
       pterm += av_.pi(mu, a.cs, cs_b, a.rho, rho_b);
     }
-    const double fp = -m_b * pterm * fr;
-    const double fv =
-        VM == ViscosityModel::Laminar ? lam_.factor(m_b, r_dot_gradw, a.rho, rho_b, inv_r2e) : 0.0;
+    const Real fp = -m_b * pterm * fr;
+    const Real fv = VM == ViscosityModel::Laminar
+                        ? lam_.factor(m_b, r_dot_gradw, a.rho, rho_b, inv_r2e)
+                        : Real(0);
     ac0 += fp * r0 + fv * w0;
     ac1 += fp * r1 + fv * w1;
     ac2 += fp * r2c + fv * w2;
@@ -128,12 +147,12 @@ class WcsphEvaluator {
                      m_b / rho_b);
   }
 
-  double finish(std::uint32_t a, const Centre& c, double drho, double ac0, double ac1, double ac2,
-                double vdt) {
+  double finish(std::uint32_t a, const Centre& c, Real drho, Real ac0, Real ac1, Real ac2,
+                Real vdt) {
     const double acc[3] = {ac0, ac1, ac2};
     drho_[a] = drho;
     // A wall particle's `ace` is the force per unit mass the fluid exerts on it (no g).
-    for (int d = 0; d < D; ++d) ace_[a][d] = acc[d] + (c.fluid ? g_[d] : 0.0);
+    for (int d = 0; d < D; ++d) ace_[a][d] = acc[d] + (c.fluid ? gd_[d] : 0.0);
     return c.fluid ? vdt : 0.0;
   }
 
@@ -144,15 +163,16 @@ class WcsphEvaluator {
 
  private:
   Kernel kernel_;
-  ArtificialViscosity av_;
-  LaminarViscosity lam_;
-  DensityDiffusion dd_;
-  double eta2_, c0_, inv_rho0_;
-  Vec<D> g_;
+  ArtificialViscosity<Real> av_;
+  LaminarViscosity<Real> lam_;
+  DensityDiffusion<Real> dd_;
+  Real support2_, eta2_, c0_, inv_rho0_;
+  Real g_[3];
+  Vec<D> gd_;  // g in double, added to the fluid's sums
   const double* P_;
-  const StateReal *U_, *rho_;  // widened to double where read
+  const StateReal *U_, *rho_;
   const double* mass_;
-  double m0_;
+  Real m0_;
   const double *prs_, *cs_;
   double* drho_;
   Vec<D>* ace_;

@@ -22,6 +22,12 @@ using StateReal = float;
 #endif
 template <int D>
 using StateVec = Eigen::Matrix<StateReal, D, 1>;
+// Arithmetic type of the WCSPH pair terms (issue #16: twice the SIMD lanes of double). Positions
+// stay double and each pair's r_ab is their difference taken in double, then rounded (as
+// DualSPHysics' CPU code does), so the rounding is relative to r_ab, never to the coordinates;
+// kernel, pressure, viscosity and diffusion terms and the per-particle sums are in PairReal.
+// The double-state build keeps double arithmetic, bit for bit as before.
+using PairReal = StateReal;
 // Relative rounding of a value when it is stored (half of it: round to nearest).
 inline constexpr double kStateEps = std::numeric_limits<StateReal>::epsilon();
 // A stored velocity in double for arithmetic, and a computed one rounded for storage.

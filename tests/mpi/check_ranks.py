@@ -3,13 +3,22 @@
 particle (by id) in the final checkpoint and column by column in the gauge and diagnostics CSVs.
 
 Bounds: the runs differ only in the order some sums are added (a particle's halo neighbours
-follow its own rank's particles), i.e. in the last bits, and the dam break to 0.06 s does not
-amplify that much: measured 8e-12 m in position, 2e-9 m/s and 5e-9 kg/m^3 (2 ranks against 1,
-0.1 s at dp/2) with the double state, 0 with the float state (2026-12-05). The bounds (1e-8 m,
-1e-5 m/s, 2.5e-4 kg/m^3: two float steps of a stored density above 1024 kg/m^3, where a last-bit
-difference flips its rounding; and 1e-6 of each CSV column's scale) leave room for a few time-step jumps (tests/mpi/test_mpi_simulation.cpp, kVarDx) while a
-lost halo particle moves things by 1e-5 m and more. A restart on the ranks that wrote the
-checkpoint must be bit for bit the uninterrupted run."""
+follow its own rank's particles). With double pair arithmetic that is the last bits: measured
+8e-12 m in position, 2e-9 m/s and 5e-9 kg/m^3 (2 ranks against 1, 0.1 s at dp/2) with the double
+state, 0 with the float state and double pair terms (2026-12-05). Since the pair loop computes
+in float (issue #16), a different order changes a particle's sums by up to a few float ulps of
+the summed terms, which the dam break carries on: measured on this case (2026-12-05) up to
+1.2e-7 m, 1.6e-5 m/s, 6.1e-4 kg/m^3, 6.5e-5 of a force gauge column's scale and 1.3e-4 of the
+absorber's state. The worst-case first-order bound derived from the pair loop's rounding
+(verify/pair_rounding.hpp, A <= 0.5 m/s^2 and R <= 20 kg/m^3/s over this run, checked by
+MpiSimulation.RoundingBoundsOfTheEndToEndRun: A T^2 = 1.8e-3 m at T = 0.06 s) is too loose to
+catch anything here, so the bounds below are set from the measurement, 8-15 times above it
+(position 1e-6 m, velocity 2e-4 m/s, density 5e-3 kg/m^3, 1e-3 of a CSV column's scale or of
+the absorber's state), and below what a lost halo particle does (it moves things by 1e-5 m
+and more, only ten times the position bound; the derived
+fixed-step bounds and the half-halo check are in tests/mpi/test_mpi_simulation.cpp). With
+double pair terms (a -DSWELL_DOUBLE_STATE=ON build) the old bounds apply. A restart on the
+ranks that wrote the checkpoint must be bit for bit the uninterrupted run."""
 import glob
 import os
 import sys
@@ -19,8 +28,21 @@ import numpy as np
 
 work = sys.argv[1]
 FIELDS = ["pos", "vel", "rho", "rho_prev", "vel_prev", "mass", "role", "body"]
-BOUND = {"pos": 1e-8, "vel": 1e-5, "rho": 2.5e-4, "rho_prev": 2.5e-4, "vel_prev": 1e-5,
-         "mass": 0.0, "role": 0, "body": 0}
+
+def float_pairs(run):
+    """True unless the run's build stored the double state (and so computed pairs in double)."""
+    with open(os.path.join(work, run, "run_info.yaml")) as f:
+        return "-DSWELL_DOUBLE_STATE" not in f.read()
+
+
+if float_pairs("r1"):
+    BOUND = {"pos": 1e-6, "vel": 2e-4, "rho": 5e-3, "rho_prev": 5e-3, "vel_prev": 2e-4,
+             "mass": 0.0, "role": 0, "body": 0}
+    CSV_REL, AWAS_REL = 1e-3, 1e-3
+else:
+    BOUND = {"pos": 1e-8, "vel": 1e-5, "rho": 2.5e-4, "rho_prev": 2.5e-4, "vel_prev": 1e-5,
+             "mass": 0.0, "role": 0, "body": 0}
+    CSV_REL, AWAS_REL = 1e-6, 1e-12
 failed = []
 
 
@@ -62,11 +84,11 @@ def compare(a_run, b_run, exact):
             d = np.nanmax(np.abs(x - y), axis=0) if np.isfinite(x).any() else np.zeros(1)
             scale = np.nanmax(np.abs(x), axis=0)
         bad = [i for i in range(len(np.atleast_1d(d)))
-               if np.isfinite(np.atleast_1d(d)[i]) and np.atleast_1d(d)[i] > 1e-6 * max(np.atleast_1d(scale)[i], 1e-12)]
+               if np.isfinite(np.atleast_1d(d)[i]) and np.atleast_1d(d)[i] > CSV_REL * max(np.atleast_1d(scale)[i], 1e-12)]
         print(f"{b_run} vs {a_run}: {name}: max column difference / scale = "
               f"{np.nanmax(np.atleast_1d(d) / np.maximum(np.atleast_1d(scale), 1e-300)):.3g}")
         if bad:
-            failed.append(f"{b_run} vs {a_run}: {name} columns {bad} differ by more than 1e-6 of their scale")
+            failed.append(f"{b_run} vs {a_run}: {name} columns {bad} differ by more than {CSV_REL} of their scale")
 
 
 def datasets(path):
@@ -156,7 +178,7 @@ if not abs(face - (0.14 + 6.19)) < 0.057:
 for k in sorted(k for k in s1 if ".awas." in k):
     d = abs(s1[k] - s2.get(k, float("nan")))
     print(f"c2 vs c1: {k}: {s1[k]:.12g} / {s2.get(k, float('nan')):.12g}")
-    if not d <= 1e-12 * max(abs(s1[k]), 1e-6):
+    if not d <= AWAS_REL * max(abs(s1[k]), 1e-6):
         failed.append(f"c2 vs c1: {k} differs by {d:.3g}")
 # Restart at a rebalance step: the half run must end on a multiple of the interval (50 steps).
 with h5py.File(os.path.join(work, "rb_half", "checkpoint.h5"), "r") as f:

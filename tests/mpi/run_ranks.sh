@@ -22,7 +22,7 @@
 #   - the regular-wave flume with an absorbing piston (FLUME, 0.1 s, fixed dt) on 1 and 2
 #     ranks: the paddle's water level is reduced over the ranks; the runs agree as above; and
 #     again with the measuring line moved onto the slab face (both ranks' particles in its
-#     sums): the same runs, and the absorber's state in the checkpoints within 1e-12;
+#     sums): the same runs, and the absorber's state in the checkpoints within check_ranks.py's bound;
 #   - restart at the worst moment for the slabs: a 2-rank run (fixed dt, a rebalance every 50
 #     steps) checkpointed at step 250, so the restart's first evaluation rebalances; bit for
 #     bit the uninterrupted run (and check_ranks.py checks the checkpoint is at that step).
