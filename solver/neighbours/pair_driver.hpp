@@ -144,10 +144,27 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
         // Pass 2: pair terms in one SIMD loop (gathers, selects instead of branches).
         const typename Evaluator::Centre ca = local.centre(a, fluid_a);
         using Real = typename Evaluator::Real;  // the sums' type
-        Real s0 = 0, s1 = 0, s2 = 0, s3 = 0, mx = 0;
+        if constexpr (kFloatGather) {
+          // Lane sums of our own, added up in GCC's reduction order by one transpose
+          // (gather.hpp): the same bits as `omp simd reduction`, without its scalar epilogue.
+          alignas(64) float q0[16], q1[16], q2[16], q3[16], qm[16];
+          for (int l = 0; l < 16; ++l) q0[l] = q1[l] = q2[l] = q3[l] = qm[l] = 0.0f;
+          for (std::uint32_t j = 0; j < k; j += 16) {
+#pragma omp simd
+            for (std::uint32_t l = 0; l < 16; ++l)
+              local.pair(ca, nb[j + l], q0[l], q1[l], q2[l], q3[l], qm[l]);
+          }
+          float s[4];
+          sum_lanes_in_order(q0, q1, q2, q3, s);
+          float mx = 0.0f;  // a maximum: the same whatever the order
+          for (int l = 0; l < 16; ++l) mx = std::max(mx, qm[l]);
+          run_max = std::max(run_max, local.finish(a, ca, s[0], s[1], s[2], s[3], mx));
+        } else {
+          Real s0 = 0, s1 = 0, s2 = 0, s3 = 0, mx = 0;
 #pragma omp simd reduction(+ : s0, s1, s2, s3) reduction(max : mx)
-        for (std::uint32_t j = 0; j < k; ++j) local.pair(ca, nb[j], s0, s1, s2, s3, mx);
-        run_max = std::max(run_max, local.finish(a, ca, s0, s1, s2, s3, mx));
+          for (std::uint32_t j = 0; j < k; ++j) local.pair(ca, nb[j], s0, s1, s2, s3, mx);
+          run_max = std::max(run_max, local.finish(a, ca, s0, s1, s2, s3, mx));
+        }
       }
     }
   }
