@@ -9,6 +9,7 @@
 
 #include <immintrin.h>
 
+#include <cstddef>
 #include <cstdint>
 
 #include "solver/state/types.hpp"
@@ -251,6 +252,60 @@ inline void sum_lanes_in_order(const float* q0, const float* q1, const float* q2
     float s = 0.0f;
     for (int l = 0; l < 16; ++l) s += q[i][l];
     out[i] = s;
+  }
+#endif
+}
+
+// Staging for a 2D float pair loop: the values of 16 neighbours (entries e[0..15], wall bit
+// allowed) copied into lanes: x0, x1 (16 doubles each) from the positions P (2 doubles a
+// particle) and r0..r3 (16 floats each) from rows R (4 floats a particle). On AVX-512 one
+// 16-byte load a neighbour and each field's row, then in-block transposes; this CPU's gathers
+// (and GCC's lane-by-lane loads, what it emits instead) cost several times more. Arrays 64-byte
+// aligned.
+inline void stage_rows_2d(const double* P, const float* R, const std::uint32_t* e, double* x0,
+                          double* x1, float* r0, float* r1, float* r2, float* r3) {
+#if defined(__AVX512F__)
+  auto at = [e](int j) { return static_cast<std::size_t>(e[j] & ~kWallBit); };
+  for (int h = 0; h < 2; ++h) {
+    // z0's 128-bit blocks hold the positions of neighbours 8h + 0, 2, 4, 6; z1's 1, 3, 5, 7.
+    const int o = 8 * h;
+    auto row = [&](int j) { return _mm_castpd_ps(_mm_loadu_pd(P + 2 * at(o + j))); };
+    __m512 z0 = _mm512_castps128_ps512(row(0)), z1 = _mm512_castps128_ps512(row(1));
+    z0 = _mm512_insertf32x4(z0, row(2), 1);
+    z1 = _mm512_insertf32x4(z1, row(3), 1);
+    z0 = _mm512_insertf32x4(z0, row(4), 2);
+    z1 = _mm512_insertf32x4(z1, row(5), 2);
+    z0 = _mm512_insertf32x4(z0, row(6), 3);
+    z1 = _mm512_insertf32x4(z1, row(7), 3);
+    _mm512_store_pd(x0 + o, _mm512_unpacklo_pd(_mm512_castps_pd(z0), _mm512_castps_pd(z1)));
+    _mm512_store_pd(x1 + o, _mm512_unpackhi_pd(_mm512_castps_pd(z0), _mm512_castps_pd(z1)));
+  }
+  // z_j's block k holds the row of neighbour 4k + j; a 4 x 4 transpose in each block.
+  auto row = [&](int j) { return _mm_loadu_ps(R + 4 * at(j)); };
+  __m512 z[4];
+  for (int j = 0; j < 4; ++j) {
+    z[j] = _mm512_castps128_ps512(row(j));
+    z[j] = _mm512_insertf32x4(z[j], row(4 + j), 1);
+    z[j] = _mm512_insertf32x4(z[j], row(8 + j), 2);
+    z[j] = _mm512_insertf32x4(z[j], row(12 + j), 3);
+  }
+  const __m512d t0 = _mm512_castps_pd(_mm512_unpacklo_ps(z[0], z[1]));
+  const __m512d t1 = _mm512_castps_pd(_mm512_unpackhi_ps(z[0], z[1]));
+  const __m512d t2 = _mm512_castps_pd(_mm512_unpacklo_ps(z[2], z[3]));
+  const __m512d t3 = _mm512_castps_pd(_mm512_unpackhi_ps(z[2], z[3]));
+  _mm512_store_ps(r0, _mm512_castpd_ps(_mm512_unpacklo_pd(t0, t2)));
+  _mm512_store_ps(r1, _mm512_castpd_ps(_mm512_unpackhi_pd(t0, t2)));
+  _mm512_store_ps(r2, _mm512_castpd_ps(_mm512_unpacklo_pd(t1, t3)));
+  _mm512_store_ps(r3, _mm512_castpd_ps(_mm512_unpackhi_pd(t1, t3)));
+#else
+  for (int j = 0; j < 16; ++j) {
+    const std::size_t b = e[j] & ~kWallBit;
+    x0[j] = P[2 * b];
+    x1[j] = P[2 * b + 1];
+    r0[j] = R[4 * b];
+    r1[j] = R[4 * b + 1];
+    r2[j] = R[4 * b + 2];
+    r3[j] = R[4 * b + 3];
   }
 #endif
 }

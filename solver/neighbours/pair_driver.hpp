@@ -69,6 +69,13 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
   // A float evaluator gathers on a float copy of the positions, relative to the grid's lower
   // corner (periodic and halo images lie within a support of the domain).
   constexpr bool kFloatGather = std::is_same_v<typename Evaluator::Real, float>;
+  // An evaluator that stages each block of 16 neighbours' values itself (stage, pair_lane).
+  constexpr bool kStaged = [] {
+    if constexpr (requires { Evaluator::kStaged; })
+      return Evaluator::kStaged && kFloatGather;
+    else
+      return false;
+  }();
   const Vec<D> origin = grid.domain_min();
   float support2f = 0.0f;
   if constexpr (kFloatGather) {
@@ -149,10 +156,20 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
           // (gather.hpp): the same bits as `omp simd reduction`, without its scalar epilogue.
           alignas(64) float q0[16], q1[16], q2[16], q3[16], qm[16];
           for (int l = 0; l < 16; ++l) q0[l] = q1[l] = q2[l] = q3[l] = qm[l] = 0.0f;
-          for (std::uint32_t j = 0; j < k; j += 16) {
+          if constexpr (kStaged) {
+            typename Evaluator::Lanes lanes;
+            for (std::uint32_t j = 0; j < k; j += 16) {
+              local.stage(nb + j, lanes);
 #pragma omp simd
-            for (std::uint32_t l = 0; l < 16; ++l)
-              local.pair(ca, nb[j + l], q0[l], q1[l], q2[l], q3[l], qm[l]);
+              for (std::uint32_t l = 0; l < 16; ++l)
+                local.pair_lane(ca, nb[j + l], lanes, l, q0[l], q1[l], q2[l], q3[l], qm[l]);
+            }
+          } else {
+            for (std::uint32_t j = 0; j < k; j += 16) {
+#pragma omp simd
+              for (std::uint32_t l = 0; l < 16; ++l)
+                local.pair(ca, nb[j + l], q0[l], q1[l], q2[l], q3[l], qm[l]);
+            }
           }
           float s[4];
           sum_lanes_in_order(q0, q1, q2, q3, s);

@@ -44,9 +44,11 @@ class WcsphEvaluator {
     bool fluid;
   };
 
-  // prs: P/rho^2 and cs: c of every active particle; drho, ace: the outputs.
+  // prs: P/rho^2 and cs: c of every active particle; drho, ace: the outputs; rows: kStaged's
+  // rows (ForceBuffers::rows).
   WcsphEvaluator(const ParticleSet<D>& ps, const SolverParams& prm, const Kernel& kernel,
-                 const double* prs, const double* cs, double* drho, Vec<D>* ace)
+                 const double* prs, const double* cs, double* drho, Vec<D>* ace,
+                 const float* rows = nullptr)
       : kernel_(kernel),
         av_{static_cast<Real>(prm.alpha), static_cast<Real>(prm.h)},
         lam_{static_cast<Real>(4.0 * prm.nu)},
@@ -69,7 +71,8 @@ class WcsphEvaluator {
         prs_(prs),
         cs_(cs),
         drho_(drho),
-        ace_(ace) {}
+        ace_(ace),
+        rows_(rows) {}
 
   Centre centre(std::uint32_t a, bool fluid_a) const {
     Centre c{};
@@ -94,20 +97,56 @@ class WcsphEvaluator {
     return c;
   }
 
+  // Staging (2D, float pair terms): the driver copies each block of 16 neighbours' values
+  // into lanes (gather.hpp: one 16-byte row load a neighbour and a transpose, instead of six
+  // scalar loads and inserts; gathers are slower still on this CPU) and runs pair_lane() on
+  // them. The rows (v_x, v_y, rho, P/rho^2 rounded to float) are ForceBuffers::rows, filled
+  // by compute_pressure; the values are those pair() reads, so the results are the same bits.
+  static constexpr bool kStaged = D == 2 && std::is_same_v<Real, float>;
+  struct Lanes {
+    alignas(64) double x0[16];
+    alignas(64) double x1[16];
+    alignas(64) float v0[16];
+    alignas(64) float v1[16];
+    alignas(64) float rho[16];
+    alignas(64) float prs[16];
+  };
+  void stage(const std::uint32_t* e, Lanes& l) const {
+    if constexpr (kStaged) stage_rows_2d(P_, rows_, e, l.x0, l.x1, l.v0, l.v1, l.rho, l.prs);
+  }
+
   // s0: drho/dt, s1..s3: acceleration, mx: viscous time-step signal. In 2D the third axis is
   // not used and compiles away. Real pairs have r2 > 1e-18 (gather); a padding entry
   // (r_ab = v_ab = 0) gets a finite kernel factor, so every term is exactly zero for it.
   void pair(const Centre& a, std::uint32_t e, Real& drho, Real& ac0, Real& ac1, Real& ac2,
             Real& vdt) const {
     const std::uint32_t b = e & ~kWallBit;
+    terms(a, e, P_[b * D], P_[b * D + 1], D == 3 ? P_[b * D + D - 1] : 0.0,
+          static_cast<Real>(U_[b * D]), static_cast<Real>(U_[b * D + 1]),
+          D == 3 ? static_cast<Real>(U_[b * D + D - 1]) : Real(0), static_cast<Real>(rho_[b]),
+          static_cast<Real>(prs_[b]), drho, ac0, ac1, ac2, vdt);
+  }
+  // The same pair from staged lanes (lane l holds entry e's values).
+  void pair_lane(const Centre& a, std::uint32_t e, const Lanes& s, std::uint32_t l, Real& drho,
+                 Real& ac0, Real& ac1, Real& ac2, Real& vdt) const {
+    terms(a, e, s.x0[l], s.x1[l], 0.0, s.v0[l], s.v1[l], Real(0), s.rho[l], s.prs[l], drho, ac0,
+          ac1, ac2, vdt);
+  }
+
+ private:
+  // One pair's terms from b's values (xb: position; vb: velocity; rho_b; prs_b: P_b/rho_b^2).
+  void terms(const Centre& a, std::uint32_t e, double xb0, double xb1, double xb2, Real vb0,
+             Real vb1, Real vb2, Real rho_b, Real prs_b, Real& drho, Real& ac0, Real& ac1,
+             Real& ac2, Real& vdt) const {
+    const std::uint32_t b = e & ~kWallBit;
     const Real fluid_b = (e & kWallBit) ? Real(0) : Real(1);
     // r_ab in double, then rounded: its relative error is Real's, whatever the coordinates.
-    const Real r0 = static_cast<Real>(a.x0 - P_[b * D]);
-    const Real r1 = static_cast<Real>(a.x1 - P_[b * D + 1]);
-    const Real r2c = D == 3 ? static_cast<Real>(a.x2 - P_[b * D + D - 1]) : Real(0);
-    const Real w0 = a.v0 - static_cast<Real>(U_[b * D]);
-    const Real w1 = a.v1 - static_cast<Real>(U_[b * D + 1]);
-    const Real w2 = D == 3 ? a.v2 - static_cast<Real>(U_[b * D + D - 1]) : Real(0);
+    const Real r0 = static_cast<Real>(a.x0 - xb0);
+    const Real r1 = static_cast<Real>(a.x1 - xb1);
+    const Real r2c = D == 3 ? static_cast<Real>(a.x2 - xb2) : Real(0);
+    const Real w0 = a.v0 - vb0;
+    const Real w1 = a.v1 - vb1;
+    const Real w2 = D == 3 ? a.v2 - vb2 : Real(0);
     const Real r2 = r0 * r0 + r1 * r1 + r2c * r2c;
     const Real vr = w0 * r0 + w1 * r1 + w2 * r2c;                                     // v_ab . r_ab
     const Real grx = g_[0] * r0 + g_[1] * r1 + (D == 3 ? g_[D - 1] * r2c : Real(0));  // g . r_ab
@@ -118,14 +157,13 @@ class WcsphEvaluator {
     const Real inside = std::is_same_v<Real, float> ? static_cast<Real>(r2 < support2_) : Real(1);
     const Real fr = kernel_.fs(std::sqrt(std::max(r2, Real(1e-18)))) * inside;
     const Real m_b = kOneMass ? m0_ : static_cast<Real>(mass_[b]);
-    const Real rho_b = static_cast<Real>(rho_[b]);
     const Real inv_r2e = Real(1) / (r2 + eta2_);
     const Real r_dot_gradw = r2 * fr;
     drho += m_b * fr * vr;  // m_b v_ab . gradW_ab
     // Approaching pairs: the viscous time-step signal and Monaghan's Pi_ab.
     const Real mu = av_.mu(vr, inv_r2e) * inside;  // the time-step signal too (1 in double)
     vdt = vdt > -mu ? vdt : -mu;
-    Real pterm = a.prs + static_cast<Real>(prs_[b]);
+    Real pterm = a.prs + prs_b;
     if constexpr (VM == ViscosityModel::Artificial) {
       Real cs_b;
       if constexpr (kTait7) {
@@ -147,6 +185,7 @@ class WcsphEvaluator {
                      m_b / rho_b);
   }
 
+ public:
   double finish(std::uint32_t a, const Centre& c, Real drho, Real ac0, Real ac1, Real ac2,
                 Real vdt) {
     const double acc[3] = {ac0, ac1, ac2};
@@ -176,6 +215,7 @@ class WcsphEvaluator {
   const double *prs_, *cs_;
   double* drho_;
   Vec<D>* ace_;
+  const float* rows_;  // kStaged: (v_x, v_y, rho, P/rho^2) per particle
 };
 
 }  // namespace swell

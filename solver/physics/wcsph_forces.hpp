@@ -26,8 +26,11 @@ template <int D>
 struct ForceBuffers {
   std::vector<Vec<D>> ace;
   std::vector<double> drho;
-  std::vector<double> prs;   // P_a / rho_a^2 (between steps: P_a, on request, Simulation::pressure)
-  std::vector<double> cs;    // sound speed c_a, only where the pair loop reads it
+  std::vector<double> prs;  // P_a / rho_a^2 (between steps: P_a, on request, Simulation::pressure)
+  std::vector<double> cs;   // sound speed c_a, only where the pair loop reads it
+  // 2D float pair loop: (v_x, v_y, rho, P/rho^2) of each particle in float, one 16-byte row
+  // the loop stages from (WcsphEvaluator::kStaged); empty otherwise.
+  std::vector<float> rows;
   double visc_dt_max = 0.0;  // max over pairs of h |v_ab.r_ab| / (r^2 + eta^2), for dt
   double cs_max = 0.0;
   NeighbourLists neighbours;
@@ -39,7 +42,9 @@ struct ForceBuffers {
     grow(ace, n);
     grow(drho, n);
     grow(prs, n);
+    if constexpr (kRows) grow(rows, 4 * n);
   }
+  static constexpr bool kRows = D == 2 && std::is_same_v<PairReal, float>;
 
  private:
   template <class T>
@@ -58,19 +63,29 @@ void compute_pressure(const ParticleSet<D>& ps, const TaitEos& eos, ForceBuffers
   const long n = static_cast<long>(ps.size());
   double rho_max = 0.0;
   if (with_cs && out.cs.size() < ps.stored()) out.cs.resize(ps.stored());  // once
+  constexpr bool kRows = ForceBuffers<D>::kRows;
+  if constexpr (kRows) {
+    if (out.rows.size() < 4 * ps.stored()) out.resize(ps.stored());  // rare, amortised
+  }
+  float* rows = out.rows.data();
+  auto one = [&](std::size_t i) {
+    const double rho = ps.rho[i];
+    out.prs[i] = eos.pressure(rho) / (rho * rho);
+    if (with_cs) out.cs[i] = eos.sound_speed(rho);
+    if constexpr (kRows) {
+      rows[4 * i] = static_cast<float>(ps.vel[i][0]);
+      rows[4 * i + 1] = static_cast<float>(ps.vel[i][1]);
+      rows[4 * i + 2] = static_cast<float>(ps.rho[i]);
+      rows[4 * i + 3] = static_cast<float>(out.prs[i]);
+    }
+  };
 #pragma omp parallel for schedule(static) reduction(max : rho_max)
   for (long i = 0; i < n; ++i) {
-    const double rho = ps.rho[i];
-    out.prs[i] = eos.pressure(rho) / (rho * rho);
-    if (with_cs) out.cs[i] = eos.sound_speed(rho);
-    rho_max = std::max(rho_max, rho);
+    one(static_cast<std::size_t>(i));
+    rho_max = std::max(rho_max, static_cast<double>(ps.rho[i]));
   }
   // Periodic images: the same values as their sources (their densities are copies).
-  for (std::size_t i = ps.ghost_begin(); i < ps.stored(); ++i) {
-    const double rho = ps.rho[i];
-    out.prs[i] = eos.pressure(rho) / (rho * rho);
-    if (with_cs) out.cs[i] = eos.sound_speed(rho);
-  }
+  for (std::size_t i = ps.ghost_begin(); i < ps.stored(); ++i) one(i);
   out.cs_max = eos.sound_speed(rho_max);  // c grows with rho
 }
 
@@ -92,16 +107,16 @@ void compute_forces(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Sol
     for (std::size_t i = 1; i < stored && one_mass; ++i) one_mass = ps.mass[i] == ps.mass[0];
     if (prm.viscosity == ViscosityModel::Artificial && tait7 && one_mass)
       run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select, true, true>(
-          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
+          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data(), f.rows.data()));
     else if (prm.viscosity == ViscosityModel::Artificial && tait7)
       run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select, true>(
-          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
+          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data(), f.rows.data()));
     else if (prm.viscosity == ViscosityModel::Artificial)
       run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select>(
-          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
+          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data(), f.rows.data()));
     else
       run(WcsphEvaluator<D, K, ViscosityModel::Laminar, Select>(
-          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data()));
+          ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data(), f.rows.data()));
     return 0;
   });
 }
