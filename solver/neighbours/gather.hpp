@@ -310,4 +310,64 @@ inline void stage_rows_2d(const double* P, const float* R, const std::uint32_t* 
 #endif
 }
 
+// Staging for a 3D float pair loop, with no copy of its own: positions x0..x2 (16 doubles
+// each) from P (3 doubles a particle) and velocities v0..v2 (16 floats each) from U (3 floats
+// a particle) by one masked load a neighbour and transposes; rho and P/rho^2 (rounded to
+// float) by plain loads. Arrays 64-byte aligned.
+inline void stage_rows_3d(const double* P, const float* U, const float* rho, const double* prs,
+                          const std::uint32_t* e, double* x0, double* x1, double* x2, float* v0,
+                          float* v1, float* v2, float* rh, float* pr) {
+  auto at = [e](int j) { return static_cast<std::size_t>(e[j] & ~kWallBit); };
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  const __m512i lo = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
+  const __m512i hi = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  for (int h = 0; h < 2; ++h) {
+    const int o = 8 * h;
+    // z_j = (position of neighbour o + j | of o + j + 4), each (x, y, z, 0).
+    auto pos = [&](int j) { return _mm256_maskz_loadu_pd(0x7, P + 3 * at(o + j)); };
+    __m512d z[4];
+    for (int j = 0; j < 4; ++j)
+      z[j] = _mm512_insertf64x4(_mm512_castpd256_pd512(pos(j)), pos(j + 4), 1);
+    // 128-bit blocks: t0 = (x0 x1 | z0 z1 | x4 x5 | z4 z5), t1 = (y0 y1 | 0 0 | y4 y5 | 0 0),
+    // t2, t3 the same for neighbours 2, 3, 6, 7.
+    const __m512d t0 = _mm512_unpacklo_pd(z[0], z[1]), t1 = _mm512_unpackhi_pd(z[0], z[1]);
+    const __m512d t2 = _mm512_unpacklo_pd(z[2], z[3]), t3 = _mm512_unpackhi_pd(z[2], z[3]);
+    _mm512_store_pd(x0 + o, _mm512_permutex2var_pd(t0, lo, t2));
+    _mm512_store_pd(x1 + o, _mm512_permutex2var_pd(t1, lo, t3));
+    _mm512_store_pd(x2 + o, _mm512_permutex2var_pd(t0, hi, t2));
+  }
+  // w_j's block k holds the velocity (x, y, z, 0) of neighbour 4k + j; 4 x 4 transposes.
+  auto vel = [&](int j) { return _mm_maskz_loadu_ps(0x7, U + 3 * at(j)); };
+  __m512 w[4];
+  for (int j = 0; j < 4; ++j) {
+    w[j] = _mm512_castps128_ps512(vel(j));
+    w[j] = _mm512_insertf32x4(w[j], vel(4 + j), 1);
+    w[j] = _mm512_insertf32x4(w[j], vel(8 + j), 2);
+    w[j] = _mm512_insertf32x4(w[j], vel(12 + j), 3);
+  }
+  const __m512d t0 = _mm512_castps_pd(_mm512_unpacklo_ps(w[0], w[1]));
+  const __m512d t1 = _mm512_castps_pd(_mm512_unpackhi_ps(w[0], w[1]));
+  const __m512d t2 = _mm512_castps_pd(_mm512_unpacklo_ps(w[2], w[3]));
+  const __m512d t3 = _mm512_castps_pd(_mm512_unpackhi_ps(w[2], w[3]));
+  _mm512_store_ps(v0, _mm512_castpd_ps(_mm512_unpacklo_pd(t0, t2)));
+  _mm512_store_ps(v1, _mm512_castpd_ps(_mm512_unpackhi_pd(t0, t2)));
+  _mm512_store_ps(v2, _mm512_castpd_ps(_mm512_unpacklo_pd(t1, t3)));
+#else
+  for (int j = 0; j < 16; ++j) {
+    const std::size_t b = at(j);
+    x0[j] = P[3 * b];
+    x1[j] = P[3 * b + 1];
+    x2[j] = P[3 * b + 2];
+    v0[j] = U[3 * b];
+    v1[j] = U[3 * b + 1];
+    v2[j] = U[3 * b + 2];
+  }
+#endif
+  for (int j = 0; j < 16; ++j) {
+    const std::size_t b = at(j);
+    rh[j] = rho[b];
+    pr[j] = static_cast<float>(prs[b]);
+  }
+}
+
 }  // namespace swell

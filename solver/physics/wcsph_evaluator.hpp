@@ -97,22 +97,29 @@ class WcsphEvaluator {
     return c;
   }
 
-  // Staging (2D, float pair terms): the driver copies each block of 16 neighbours' values
+  // Staging (float pair terms): the driver copies each block of 16 neighbours' values
   // into lanes (gather.hpp: one 16-byte row load a neighbour and a transpose, instead of six
   // scalar loads and inserts; gathers are slower still on this CPU) and runs pair_lane() on
   // them. The rows (v_x, v_y, rho, P/rho^2 rounded to float) are ForceBuffers::rows, filled
   // by compute_pressure; the values are those pair() reads, so the results are the same bits.
-  static constexpr bool kStaged = D == 2 && std::is_same_v<Real, float>;
+  // In 3D the positions and velocities are staged from the state itself and rho, P/rho^2 by
+  // plain loads (no rows: 16 B more per particle would pass the memory target).
+  static constexpr bool kStaged = std::is_same_v<Real, float>;
   struct Lanes {
     alignas(64) double x0[16];
     alignas(64) double x1[16];
+    alignas(64) double x2[16];
     alignas(64) float v0[16];
     alignas(64) float v1[16];
+    alignas(64) float v2[16];
     alignas(64) float rho[16];
     alignas(64) float prs[16];
   };
   void stage(const std::uint32_t* e, Lanes& l) const {
-    if constexpr (kStaged) stage_rows_2d(P_, rows_, e, l.x0, l.x1, l.v0, l.v1, l.rho, l.prs);
+    if constexpr (D == 2)
+      stage_rows_2d(P_, rows_, e, l.x0, l.x1, l.v0, l.v1, l.rho, l.prs);
+    else
+      stage_rows_3d(P_, U_, rho_, prs_, e, l.x0, l.x1, l.x2, l.v0, l.v1, l.v2, l.rho, l.prs);
   }
 
   // s0: drho/dt, s1..s3: acceleration, mx: viscous time-step signal. In 2D the third axis is
@@ -129,8 +136,8 @@ class WcsphEvaluator {
   // The same pair from staged lanes (lane l holds entry e's values).
   void pair_lane(const Centre& a, std::uint32_t e, const Lanes& s, std::uint32_t l, Real& drho,
                  Real& ac0, Real& ac1, Real& ac2, Real& vdt) const {
-    terms(a, e, s.x0[l], s.x1[l], 0.0, s.v0[l], s.v1[l], Real(0), s.rho[l], s.prs[l], drho, ac0,
-          ac1, ac2, vdt);
+    terms(a, e, s.x0[l], s.x1[l], D == 3 ? s.x2[l] : 0.0, s.v0[l], s.v1[l],
+          D == 3 ? s.v2[l] : Real(0), s.rho[l], s.prs[l], drho, ac0, ac1, ac2, vdt);
   }
 
  private:
