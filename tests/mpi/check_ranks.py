@@ -187,6 +187,23 @@ print(f"rb_half: checkpoint at step {steps}")
 if steps % 50 != 0 or steps == 0:
     failed.append(f"rb_half: checkpoint at step {steps}, not at a rebalance step (multiple of 50)")
 compare("rb_full", "rb_re", exact=True)
+# A moving wall across the slab face (tests/data/mpi_plate2d.yaml): the plate straddles the
+# middle of the tank, where 2 ranks cut it, and moves 2 cm to the right, so the part of it that
+# started on rank 0's side (its reference pose) migrates to rank 1; the runs agree within the
+# bounds above.
+compare("p1", "p2", exact=False)
+face = schedule("p2").get("decomposition.lo.1", float("nan"))
+with h5py.File(os.path.join(work, "p2", "checkpoint.h5"), "r") as f:
+    plate = f["particles/body"][()] == 1
+    x0 = f["particles/pos_ref"][()][plate, 0]
+    x = f["particles/pos"][()][plate, 0]
+started_left = x0 < face
+crossed = int(np.sum(started_left & (x >= face)))
+print(f"p2: slab face at x = {face:.4f} m; {int(np.sum(started_left))} of the plate's "
+      f"{int(plate.sum())} particles started on rank 0's side, {crossed} of them crossed to "
+      f"rank 1's (x now {x.min():.4f} .. {x.max():.4f} m)")
+if not (crossed > 0 and np.sum(~started_left) > 0):
+    failed.append(f"p2: the plate did not straddle and cross the slab face")
 if failed:
     print("FAIL:\n  " + "\n  ".join(failed))
     sys.exit(1)

@@ -23,6 +23,9 @@
 #     ranks: the paddle's water level is reduced over the ranks; the runs agree as above; and
 #     again with the measuring line moved onto the slab face (both ranks' particles in its
 #     sums): the same runs, and the absorber's state in the checkpoints within check_ranks.py's bound;
+#   - a plate that straddles the slab face and moves across it (a moving wall whose particles
+#     migrate between the ranks; tests/data/mpi_plate2d.yaml) on 1 and 2 ranks: the runs agree
+#     as above, and part of the plate crossed the face;
 #   - restart at the worst moment for the slabs: a 2-rank run (fixed dt, a rebalance every 50
 #     steps) checkpointed at step 250, so the restart's first evaluation rebalances; bit for
 #     bit the uninterrupted run (and check_ranks.py checks the checkpoint is at that step).
@@ -97,4 +100,9 @@ run 2 -o rb_full $rb --set time.end=0.014 > rb_full.log
 run 2 -o rb_half $rb --set time.end=0.01 > rb_half.log
 cp -r rb_half rb_re
 run 2 --restart rb_re $rb --set time.end=0.014 > rb_re.log
+# A moving wall whose particles cross the slab face (tests/data/mpi_plate2d.yaml): 2 ranks
+# against 1.
+plate="$here/../data/mpi_plate2d.yaml"
+"$swell" run "$plate" -q -t 1 -o p1 > p1.log
+"$mpirun" --oversubscribe -np 2 "$swell" run "$plate" -q -t 1 -o p2 > p2.log
 exec python3 "$here/check_ranks.py" "$work"
