@@ -16,6 +16,10 @@
 //                 Real mx);                  stores a's results, returns its share of the
 //                                              run-wide maximum (e.g. the viscous dt signal)
 //   void idle(std::uint32_t a);                  a in a skipped (dry) cell
+// Optional, for a float evaluator (the WCSPH one): `static constexpr bool kStaged = true;`, a
+// `Lanes` type, `void stage(const std::uint32_t* entries, Lanes&) const` that copies 16
+// entries' values into lane arrays, and `pair_lane(centre, entry, lanes, lane, sums...)`, the
+// same terms as pair() from them; the driver then stages each block of 16 before the SIMD loop.
 // Each particle's sums run over its neighbours in a fixed order (the cell order), so results do
 // not depend on the thread count.
 #pragma once
@@ -148,7 +152,8 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
         constexpr std::uint32_t kLanes = kFloatGather ? 2 * kPairLanes : kPairLanes;
         while (k % kLanes) nb[k++] = a;
 
-        // Pass 2: pair terms in one SIMD loop (gathers, selects instead of branches).
+        // Pass 2: pair terms in one SIMD loop (staged lanes or indexed loads; selects instead
+        // of branches).
         const typename Evaluator::Centre ca = local.centre(a, fluid_a);
         using Real = typename Evaluator::Real;  // the sums' type
         if constexpr (kFloatGather) {
