@@ -205,6 +205,35 @@ inline std::uint32_t gather_neighbours(const float* P, const Role* role, const f
   return k;
 }
 
+#if defined(__AVX512F__)
+// A 4 x 4 transpose of floats within each 128-bit block: out[i]'s element j of block k is
+// in[j]'s element i of block k.
+inline void transpose_blocks4(const __m512 in[4], __m512 out[4]) {
+  const __m512d t0 = _mm512_castps_pd(_mm512_unpacklo_ps(in[0], in[1]));
+  const __m512d t1 = _mm512_castps_pd(_mm512_unpackhi_ps(in[0], in[1]));
+  const __m512d t2 = _mm512_castps_pd(_mm512_unpacklo_ps(in[2], in[3]));
+  const __m512d t3 = _mm512_castps_pd(_mm512_unpackhi_ps(in[2], in[3]));
+  out[0] = _mm512_castpd_ps(_mm512_unpacklo_pd(t0, t2));
+  out[1] = _mm512_castpd_ps(_mm512_unpackhi_pd(t0, t2));
+  out[2] = _mm512_castpd_ps(_mm512_unpacklo_pd(t1, t3));
+  out[3] = _mm512_castpd_ps(_mm512_unpackhi_pd(t1, t3));
+}
+
+// 16 rows of 4 floats (row(j): neighbour j's, as a __m128) into 4 vectors of 16 lanes: out[i]
+// lane j = row j's element i.
+template <class Row>
+inline void rows_to_lanes16(Row row, __m512 out[4]) {
+  __m512 z[4];  // z_j's block k holds row 4k + j
+  for (int j = 0; j < 4; ++j) {
+    z[j] = _mm512_castps128_ps512(row(j));
+    z[j] = _mm512_insertf32x4(z[j], row(4 + j), 1);
+    z[j] = _mm512_insertf32x4(z[j], row(8 + j), 2);
+    z[j] = _mm512_insertf32x4(z[j], row(12 + j), 3);
+  }
+  transpose_blocks4(z, out);
+}
+#endif
+
 // The four sums of a float pair loop, each held as 16 lane partial sums (lane l has summed the
 // pairs j = l, l + 16, ...), added up lane by lane in one fixed order: out[q] = ((0 + q[0]) +
 // q[1]) + ... + q[15]. That is the order in which GCC finishes an `omp simd reduction(+)` of
@@ -215,19 +244,12 @@ inline std::uint32_t gather_neighbours(const float* P, const Role* role, const f
 inline void sum_lanes_in_order(const float* q0, const float* q1, const float* q2, const float* q3,
                                float out[4]) {
 #if defined(__AVX512F__)
-  const __m512 a = _mm512_load_ps(q0), b = _mm512_load_ps(q1), c = _mm512_load_ps(q2),
-               d = _mm512_load_ps(q3);
-  // Per 128-bit block k: t0 = a0 b0 a1 b1, t1 = a2 b2 a3 b3, t2 = c0 d0 c1 d1, t3 = c2 d2 c3 d3
-  // (indices within the block, lane 4k + i).
-  const __m512d t0 = _mm512_castps_pd(_mm512_unpacklo_ps(a, b));
-  const __m512d t1 = _mm512_castps_pd(_mm512_unpackhi_ps(a, b));
-  const __m512d t2 = _mm512_castps_pd(_mm512_unpacklo_ps(c, d));
-  const __m512d t3 = _mm512_castps_pd(_mm512_unpackhi_ps(c, d));
-  // u_i, block k: (a, b, c, d) of lane 4k + i.
-  const __m512 u0 = _mm512_castpd_ps(_mm512_unpacklo_pd(t0, t2));
-  const __m512 u1 = _mm512_castpd_ps(_mm512_unpackhi_pd(t0, t2));
-  const __m512 u2 = _mm512_castpd_ps(_mm512_unpacklo_pd(t1, t3));
-  const __m512 u3 = _mm512_castpd_ps(_mm512_unpackhi_pd(t1, t3));
+  const __m512 in[4] = {_mm512_load_ps(q0), _mm512_load_ps(q1), _mm512_load_ps(q2),
+                        _mm512_load_ps(q3)};
+  // u_i, block k: (q0, q1, q2, q3) of lane 4k + i.
+  __m512 u[4];
+  transpose_blocks4(in, u);
+  const __m512 u0 = u[0], u1 = u[1], u2 = u[2], u3 = u[3];
   __m128 acc = _mm_setzero_ps();
   acc = _mm_add_ps(acc, _mm512_castps512_ps128(u0));
   acc = _mm_add_ps(acc, _mm512_castps512_ps128(u1));
@@ -280,23 +302,12 @@ inline void stage_rows_2d(const double* P, const float* R, const std::uint32_t* 
     _mm512_store_pd(x0 + o, _mm512_unpacklo_pd(_mm512_castps_pd(z0), _mm512_castps_pd(z1)));
     _mm512_store_pd(x1 + o, _mm512_unpackhi_pd(_mm512_castps_pd(z0), _mm512_castps_pd(z1)));
   }
-  // z_j's block k holds the row of neighbour 4k + j; a 4 x 4 transpose in each block.
-  auto row = [&](int j) { return _mm_loadu_ps(R + 4 * at(j)); };
-  __m512 z[4];
-  for (int j = 0; j < 4; ++j) {
-    z[j] = _mm512_castps128_ps512(row(j));
-    z[j] = _mm512_insertf32x4(z[j], row(4 + j), 1);
-    z[j] = _mm512_insertf32x4(z[j], row(8 + j), 2);
-    z[j] = _mm512_insertf32x4(z[j], row(12 + j), 3);
-  }
-  const __m512d t0 = _mm512_castps_pd(_mm512_unpacklo_ps(z[0], z[1]));
-  const __m512d t1 = _mm512_castps_pd(_mm512_unpackhi_ps(z[0], z[1]));
-  const __m512d t2 = _mm512_castps_pd(_mm512_unpacklo_ps(z[2], z[3]));
-  const __m512d t3 = _mm512_castps_pd(_mm512_unpackhi_ps(z[2], z[3]));
-  _mm512_store_ps(r0, _mm512_castpd_ps(_mm512_unpacklo_pd(t0, t2)));
-  _mm512_store_ps(r1, _mm512_castpd_ps(_mm512_unpackhi_pd(t0, t2)));
-  _mm512_store_ps(r2, _mm512_castpd_ps(_mm512_unpacklo_pd(t1, t3)));
-  _mm512_store_ps(r3, _mm512_castpd_ps(_mm512_unpackhi_pd(t1, t3)));
+  __m512 q[4];
+  rows_to_lanes16([&](int j) { return _mm_loadu_ps(R + 4 * at(j)); }, q);
+  _mm512_store_ps(r0, q[0]);
+  _mm512_store_ps(r1, q[1]);
+  _mm512_store_ps(r2, q[2]);
+  _mm512_store_ps(r3, q[3]);
 #else
   for (int j = 0; j < 16; ++j) {
     const std::size_t b = e[j] & ~kWallBit;
@@ -336,22 +347,12 @@ inline void stage_rows_3d(const double* P, const float* U, const float* rho, con
     _mm512_store_pd(x1 + o, _mm512_permutex2var_pd(t1, lo, t3));
     _mm512_store_pd(x2 + o, _mm512_permutex2var_pd(t0, hi, t2));
   }
-  // w_j's block k holds the velocity (x, y, z, 0) of neighbour 4k + j; 4 x 4 transposes.
-  auto vel = [&](int j) { return _mm_maskz_loadu_ps(0x7, U + 3 * at(j)); };
+  // The velocities (x, y, z, 0) of the 16 neighbours, as rows.
   __m512 w[4];
-  for (int j = 0; j < 4; ++j) {
-    w[j] = _mm512_castps128_ps512(vel(j));
-    w[j] = _mm512_insertf32x4(w[j], vel(4 + j), 1);
-    w[j] = _mm512_insertf32x4(w[j], vel(8 + j), 2);
-    w[j] = _mm512_insertf32x4(w[j], vel(12 + j), 3);
-  }
-  const __m512d t0 = _mm512_castps_pd(_mm512_unpacklo_ps(w[0], w[1]));
-  const __m512d t1 = _mm512_castps_pd(_mm512_unpackhi_ps(w[0], w[1]));
-  const __m512d t2 = _mm512_castps_pd(_mm512_unpacklo_ps(w[2], w[3]));
-  const __m512d t3 = _mm512_castps_pd(_mm512_unpackhi_ps(w[2], w[3]));
-  _mm512_store_ps(v0, _mm512_castpd_ps(_mm512_unpacklo_pd(t0, t2)));
-  _mm512_store_ps(v1, _mm512_castpd_ps(_mm512_unpackhi_pd(t0, t2)));
-  _mm512_store_ps(v2, _mm512_castpd_ps(_mm512_unpacklo_pd(t1, t3)));
+  rows_to_lanes16([&](int j) { return _mm_maskz_loadu_ps(0x7, U + 3 * at(j)); }, w);
+  _mm512_store_ps(v0, w[0]);
+  _mm512_store_ps(v1, w[1]);
+  _mm512_store_ps(v2, w[2]);
 #else
   for (int j = 0; j < 16; ++j) {
     const std::size_t b = at(j);
