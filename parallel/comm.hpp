@@ -56,10 +56,12 @@ class Comm {
   // and [hi, hi + hi_bytes) to rank + 1 (nothing where there is no such rank), and receives
   // what rank - 1 and rank + 1 send this way, in that order, into recv (resized to hold both;
   // recv_lo_bytes: the part from rank - 1). Sizes travel first. Point-to-point: its latency
-  // does not grow with the number of ranks, unlike alltoallv's.
+  // does not grow with the number of ranks, unlike alltoallv's. `ring`: the line is closed
+  // (slabs along a periodic axis): rank 0's rank - 1 is the last rank and the last rank's
+  // rank + 1 is rank 0 (on 2 ranks both are the other rank; the tags keep the two apart).
   void neighbour_exchange(const std::byte* lo, std::size_t lo_bytes, const std::byte* hi,
                           std::size_t hi_bytes, std::vector<std::byte>& recv,
-                          std::size_t& recv_lo_bytes) const;
+                          std::size_t& recv_lo_bytes, bool ring = false) const;
 
   void barrier() const;
 

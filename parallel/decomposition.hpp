@@ -166,12 +166,15 @@ struct MigrationBuffers {
   std::size_t sent = 0, received = 0;  // particles, this call
 };
 
+// `ring`: the slab axis is periodic (the particles wrapped before this call), so the first and
+// the last rank are neighbours too.
 template <int D>
 void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, MigrationBuffers& buf,
-             bool neighbours_first = false, const LentScratch<D>& lent = {}) {
+             bool neighbours_first = false, const LentScratch<D>& lent = {}, bool ring = false) {
   if (ps.n_ghost != 0) throw std::logic_error("migrate: drop the periodic images first");
   const int me = comm.rank(), n = comm.size();
   if (slabs.size() != n) throw std::invalid_argument("migrate: one slab per rank");
+  const int below = ring ? (me + n - 1) % n : me - 1, above = ring ? (me + 1) % n : me + 1;
   const std::size_t rec = record_bytes(ps), na = ps.size(), total = ps.total();
   buf.dest.resize(na);
   buf.send_count.assign(static_cast<std::size_t>(n), 0);
@@ -185,7 +188,7 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
     if (o != me) {
       buf.send_count[static_cast<std::size_t>(o)] += static_cast<int>(rec);
       ++leaving;
-      far = far || o < me - 1 || o > me + 1;
+      far = far || (o != below && o != above);
     }
   }
   const bool neighbours = neighbours_first && n > 1 && comm.max(far ? 1.0 : 0.0) == 0.0;
@@ -207,17 +210,31 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
     }
   }
   if (neighbours) {
-    // Rank order of the send buffer: the part for rank - 1, then the part for rank + 1.
-    const std::size_t lo = me > 0 ? static_cast<std::size_t>(buf.send_count[me - 1]) : 0,
-                      hi = me + 1 < n ? static_cast<std::size_t>(buf.send_count[me + 1]) : 0;
+    // The send buffer is in rank order: each neighbour's part starts where the lower ranks'
+    // parts end. On a ring of 2 ranks both neighbours are the other rank: its whole part goes
+    // as the message to `below`, an empty one to `above`.
+    const auto part = [&](int r) {
+      std::size_t off = 0;
+      for (int q = 0; q < r; ++q) off += static_cast<std::size_t>(buf.send_count[q]);
+      return off;
+    };
+    const bool same = below == above;
+    const std::size_t lo = below >= 0 ? static_cast<std::size_t>(buf.send_count[below]) : 0,
+                      hi = above < n && !same ? static_cast<std::size_t>(buf.send_count[above]) : 0;
     std::size_t from_lo = 0;
-    comm.neighbour_exchange(buf.send.data(), lo, buf.send.data() + lo, hi, buf.recv, from_lo);
+    comm.neighbour_exchange(buf.send.data() + (below >= 0 ? part(below) : 0), lo,
+                            buf.send.data() + (above < n ? part(above) : 0), hi, buf.recv, from_lo,
+                            ring);
     buf.recv_count.assign(static_cast<std::size_t>(n), 0);
     buf.recv_displ.assign(static_cast<std::size_t>(n), 0);
-    if (me > 0) buf.recv_count[me - 1] = static_cast<int>(from_lo);
-    if (me + 1 < n) {
-      buf.recv_count[me + 1] = static_cast<int>(buf.recv.size() - from_lo);
-      buf.recv_displ[me + 1] = static_cast<int>(from_lo);
+    if (same) {
+      buf.recv_count[below] = static_cast<int>(buf.recv.size());
+    } else {
+      if (below >= 0) buf.recv_count[below] = static_cast<int>(from_lo);
+      if (above < n) {
+        buf.recv_count[above] = static_cast<int>(buf.recv.size() - from_lo);
+        buf.recv_displ[above] = static_cast<int>(from_lo);
+      }
     }
   } else {
     comm.alltoallv(buf.send, buf.send_count, buf.recv, buf.recv_count, buf.recv_displ);

@@ -20,7 +20,11 @@
 // Remote images (domain decomposition, solver/time/exchange.hpp) take the same path: the
 // exchange asks place_remote_images() where each arriving particle goes in the image block,
 // stores it there and calls attach_remote_images(). Such an image has no local source
-// (ghost_source() is kRemote); refresh_ghosts() leaves it to the exchange.
+// (ghost_source() is kRemote); refresh_ghosts() leaves it to the exchange. In a decomposed run
+// with periodic axes (set_images_by_exchange) sort() builds no images: place_remote_images()
+// adds this rank's own periodic images on every periodic axis but the slab axis (the exchange
+// sends the images across the slab axis's periodic faces, and the halo particles' images on
+// the other axes), ordered by cell together with the remote ones.
 #pragma once
 
 #include <algorithm>
@@ -77,6 +81,30 @@ class CellGrid {
   }
   bool periodic(int axis) const { return periodic_[axis]; }
   bool any_periodic() const { return any_periodic_; }
+  // A decomposed run: the images are built with the halo (place_remote_images), not by sort().
+  void set_images_by_exchange(bool on) { by_exchange_ = on; }
+  // Wraps the particles that crossed a periodic face (sort() does it too; a decomposed run does
+  // it before migration, so each particle goes to the rank that owns its wrapped position).
+  void wrap_periodic(ParticleSet<D>& ps) const {
+    if (any_periodic_) wrap(ps);
+  }
+  // The periodic axes (but skip_axis) within one cell of whose faces x lies, as a bit mask, and
+  // the shift to its image across each: s[d] = +L near the low face, -L near the high one.
+  int image_shifts(const Vec<D>& x, int skip_axis, std::array<double, D>& s) const {
+    int axes = 0;
+    for (int d = 0; d < D; ++d) {
+      if (!periodic_[d] || d == skip_axis) continue;
+      const double L = max_[d] - min_[d];
+      if (x[d] - min_[d] < cell_size_)
+        s[d] = L;
+      else if (max_[d] - x[d] < cell_size_)
+        s[d] = -L;
+      if (s[d] != 0.0) axes |= 1 << d;
+    }
+    return axes;
+  }
+  // Whether some images have their source on this rank (periodic images; refresh_ghosts).
+  bool has_local_images() const { return n_local_images_ > 0; }
   std::size_t ghost_count() const { return n_ghost_; }
   // Source (an active index) and cell of image k, stored at ParticleSet::ghost_begin() + k.
   // kRemote for a remote image (its source lives on another rank).
@@ -180,13 +208,14 @@ class CellGrid {
     }
     for (std::uint32_t i = start_[num_cells_]; i < start_[num_cells_ + 1]; ++i)
       cell_of_[i] = excluded_cell;
-    if (any_periodic_) build_ghosts(ps);
+    if (any_periodic_ && !by_exchange_) build_ghosts(ps);
     return result;
   }
 
   // Removes the periodic images (allocation-free: the arrays keep their capacity).
   void drop_ghosts(ParticleSet<D>& ps) {
     n_ghost_ = 0;
+    n_local_images_ = 0;
     if (ps.n_ghost == 0) return;
     const std::size_t keep = ps.total();
     ps.for_each_field([&](const FieldInfo& f, auto& a) {
@@ -209,37 +238,30 @@ class CellGrid {
     }
   }
 
-  // Remote images (after sort(), on a grid without periodic axes): the n arriving particles at
-  // positions xs (inside the domain) get slots in the image block, ordered by cell; image k
-  // must be stored at ps.stored() + slot_of[k] (the caller grows the arrays by n), then
-  // attach_remote_images() marks their cells and sets ps.n_ghost. Allocation-free once the
-  // buffers reached their size.
-  void place_remote_images(const ParticleSet<D>& ps, const std::vector<Vec<D>>& xs,
-                           std::vector<std::uint32_t>& slot_of) {
-    if (any_periodic_ || ps.n_ghost != 0)
-      throw std::logic_error("CellGrid: remote images on a grid with periodic images");
-    const std::size_t ng = xs.size();
-    cand_cell_.resize(ng);
-    for (std::size_t k = 0; k < ng; ++k) cand_cell_[k] = ghost_cell_index(xs[k]);
-    ghost_start_.assign(num_cells_ + 2, 0u);
-    for (std::size_t k = 0; k < ng; ++k) ++ghost_start_[cand_cell_[k] + 1];
-    for (std::size_t c = 0; c + 1 < ghost_start_.size(); ++c)
-      ghost_start_[c + 1] += ghost_start_[c];
-    ghost_src_.assign(ng, kRemote);
-    ghost_shift_.assign(ng, Vec<D>::Zero());
-    ghost_cell_.resize(ng);
-    slot_of.resize(ng);
-    cursor_.assign(ghost_start_.begin(), ghost_start_.end());
-    for (std::size_t k = 0; k < ng; ++k) {
-      const std::uint32_t slot = cursor_[cand_cell_[k]]++;
-      slot_of[k] = slot;
-      ghost_cell_[slot] = cand_cell_[k];
+  // Remote images (after sort()): the arriving particles at positions xs get slots in the image
+  // block, ordered by cell together with this rank's own periodic images on the periodic axes
+  // other than `slab_axis` (none without periodic axes). Every field grows by all the images
+  // and the periodic ones are stored; remote image k must then be stored at
+  // B + slot_of[k], B being the arrays' size before this call, and attach_remote_images()
+  // marks their cells and sets ps.n_ghost. Allocation-free once the buffers reached their size.
+  void place_remote_images(ParticleSet<D>& ps, const std::vector<Vec<D>>& xs,
+                           std::vector<std::uint32_t>& slot_of, int slab_axis = -1) {
+    if (ps.n_ghost != 0 || (any_periodic_ && !by_exchange_))
+      throw std::logic_error("CellGrid: remote images on a grid that built its own images");
+    if (any_periodic_)
+      collect_images(ps, slab_axis);
+    else
+      cand_src_.clear(), cand_shift_.clear(), cand_cell_.clear();
+    n_local_images_ = cand_src_.size();
+    for (const Vec<D>& x : xs) {
+      cand_src_.push_back(kRemote);
+      cand_shift_.push_back(Vec<D>::Zero());
+      cand_cell_.push_back(ghost_cell_index(x));
     }
-    ghost_base_ = static_cast<std::uint32_t>(ps.pos.size());
-    n_ghost_ = ng;
+    store_images(ps, &slot_of);
   }
   void attach_remote_images(ParticleSet<D>& ps) {
-    if (ps.pos.size() != ghost_base_ + n_ghost_)
+    if (ps.pos.size() != ghost_base_ + n_ghost_ || ps.n_ghost != 0)
       throw std::logic_error("CellGrid: the remote images are not stored where they were placed");
     for (std::size_t k = 0; k < n_ghost_; ++k)
       has_fluid_[ghost_cell_[k]] |= ps.role[ghost_base_ + k] == Role::Fluid;
@@ -358,23 +380,25 @@ class CellGrid {
   // Appends the periodic images of the active particles, ordered by cell, and counts them
   // into ghost_start_. Serial O(N) scan; allocation-free once the buffers reached their size.
   void build_ghosts(ParticleSet<D>& ps) {
-    const std::size_t n = ps.size(), base = ps.pos.size();
+    collect_images(ps, -1);
+    n_local_images_ = cand_src_.size();
+    store_images(ps, nullptr);
+    ps.n_ghost = n_ghost_;
+    for (std::size_t k = 0; k < n_ghost_; ++k)
+      has_fluid_[ghost_cell_[k]] |= ps.role[ghost_base_ + k] == Role::Fluid;
+  }
+
+  // The periodic images of the active particles as candidates (source, shift, cell), on every
+  // periodic axis but `skip_axis`.
+  void collect_images(const ParticleSet<D>& ps, int skip_axis) {
+    const std::size_t n = ps.size();
     cand_src_.clear();
     cand_shift_.clear();
     cand_cell_.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const Vec<D>& x = ps.pos[i];
       std::array<double, D> s{};
-      int axes = 0;
-      for (int d = 0; d < D; ++d) {
-        if (!periodic_[d]) continue;
-        const double L = max_[d] - min_[d];
-        if (x[d] - min_[d] < cell_size_)
-          s[d] = L;
-        else if (max_[d] - x[d] < cell_size_)
-          s[d] = -L;
-        if (s[d] != 0.0) axes |= 1 << d;
-      }
+      const int axes = image_shifts(x, skip_axis, s);
       // One image per non-empty subset of the axes the particle is near (faces, edges, corners).
       for (int mask = axes; mask > 0; mask = (mask - 1) & axes) {
         Vec<D> shift = Vec<D>::Zero();
@@ -385,7 +409,13 @@ class CellGrid {
         cand_cell_.push_back(ghost_cell_index(x + shift));
       }
     }
-    const std::size_t ng = cand_src_.size();
+  }
+
+  // Orders the candidates by cell (stable: candidate order within a cell) into the image
+  // block after the stored particles, grows every field by their number and stores the local
+  // ones (source's record, shifted position). slot_of: each remote candidate's slot, in order.
+  void store_images(ParticleSet<D>& ps, std::vector<std::uint32_t>* slot_of) {
+    const std::size_t base = ps.pos.size(), ng = cand_src_.size();
     ghost_start_.assign(num_cells_ + 2, 0u);
     for (std::size_t k = 0; k < ng; ++k) ++ghost_start_[cand_cell_[k] + 1];
     for (std::size_t c = 0; c + 1 < ghost_start_.size(); ++c)
@@ -393,24 +423,27 @@ class CellGrid {
     ghost_src_.resize(ng);
     ghost_shift_.resize(ng);
     ghost_cell_.resize(ng);
+    if (slot_of) slot_of->resize(ng - n_local_images_);
     cursor_.assign(ghost_start_.begin(), ghost_start_.end());
     for (std::size_t k = 0; k < ng; ++k) {
       const std::uint32_t slot = cursor_[cand_cell_[k]]++;
       ghost_src_[slot] = cand_src_[k];
       ghost_shift_[slot] = cand_shift_[k];
       ghost_cell_[slot] = cand_cell_[k];
+      if (k >= n_local_images_) (*slot_of)[k - n_local_images_] = slot;
     }
     ps.for_each_field([&](const FieldInfo& f, auto& a) {
       if (!ps.enabled(f)) return;
       a.resize(base + ng);
-      for (std::size_t k = 0; k < ng; ++k) a[base + k] = a[ghost_src_[k]];
+      if (n_local_images_ == 0) return;
+      for (std::size_t k = 0; k < ng; ++k)
+        if (ghost_src_[k] != kRemote) a[base + k] = a[ghost_src_[k]];
     });
-    for (std::size_t k = 0; k < ng; ++k) ps.pos[base + k] += ghost_shift_[k];
-    ps.n_ghost = ng;
+    if (n_local_images_ > 0)
+      for (std::size_t k = 0; k < ng; ++k)
+        if (ghost_src_[k] != kRemote) ps.pos[base + k] += ghost_shift_[k];
     ghost_base_ = static_cast<std::uint32_t>(base);
     n_ghost_ = ng;
-    for (std::size_t k = 0; k < ng; ++k)
-      has_fluid_[ghost_cell_[k]] |= ps.role[base + k] == Role::Fluid;
   }
 
   Vec<D> min_ = Vec<D>::Zero(), max_ = Vec<D>::Zero();
@@ -421,7 +454,8 @@ class CellGrid {
   std::vector<std::uint8_t> has_fluid_;
   // Periodic axes and images.
   std::array<bool, D> periodic_{};
-  bool any_periodic_ = false;
+  bool any_periodic_ = false, by_exchange_ = false;
+  std::size_t n_local_images_ = 0;  // images whose source is on this rank (periodic)
   std::size_t n_ghost_ = 0;
   std::uint32_t ghost_base_ = 0;
   std::vector<std::uint32_t> ghost_start_, ghost_src_, ghost_cell_, cand_src_, cand_cell_;

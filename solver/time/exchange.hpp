@@ -8,7 +8,9 @@
 // halo width of this rank's part are appended as images after the stored particles, placed in
 // the cell grid like periodic images), refresh wherever the periodic images are refreshed
 // (the images take their owners' new position, velocity and density), and global reductions
-// for the time step and the fluid count. Every call is collective: every rank makes it.
+// for the time step and the fluid count. Every call is collective: every rank makes it. With
+// periodic axes the Simulation wraps the particles before migrate, and build_halo also builds
+// the periodic images (CellGrid::place_remote_images).
 #pragma once
 
 #include <cstdint>
@@ -25,6 +27,9 @@ template <int D>
 class Exchange {
  public:
   virtual ~Exchange() = default;
+  // Once, by the Simulation: its cell grid's domain, cell size and periodic axes (an exchange
+  // across a periodic face sends its particles shifted by the period).
+  virtual void configure(const CellGrid<D>&) {}
   // Before the sort, periodic images dropped. `step` is the step count (rebalance interval).
   // `lent`: arrays dead at this point that the reorder may use as scratch.
   virtual void migrate(ParticleSet<D>& ps, long step, const LentScratch<D>& lent = {}) = 0;

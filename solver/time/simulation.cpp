@@ -38,10 +38,11 @@ Simulation<D>::Simulation(const SolverParams& params, ParticleSet<D> particles,
   std::array<bool, D> periodic{};
   for (int d = 0; d < D; ++d) periodic[d] = prm_.periodic[d];
   grid_.set_periodic(periodic);
-  if (exchange_ && grid_.any_periodic())
-    throw std::invalid_argument(
-        "periodic boundaries (domain.periodic) run on one rank only: a decomposed run cannot "
-        "wrap its halo yet");
+  if (exchange_) {
+    // The exchange builds the images (the halo, and across periodic faces) with the halo.
+    grid_.set_images_by_exchange(true);
+    exchange_->configure(grid_);
+  }
   // The set-up's sorts may have allocated the set's own reorder scratch; the Simulation's sorts
   // borrow the force buffers instead (sort_particles).
   ps_.release_scratch();
@@ -164,7 +165,8 @@ template <int D>
 void Simulation<D>::evaluate() {
   if (exchange_) {
     const double tm = omp_get_wtime();
-    grid_.drop_ghosts(ps_);  // the last evaluation's halo
+    grid_.drop_ghosts(ps_);    // the last evaluation's halo
+    grid_.wrap_periodic(ps_);  // a particle that crossed a periodic face goes to its new owner
     // The rates are dead until this evaluation's forces: the reorder's scratch.
     exchange_->migrate(ps_, steps_, lent_force_buffers());
     times_.neighbour += omp_get_wtime() - tm;
@@ -190,6 +192,7 @@ template <int D>
 void Simulation<D>::redistribute() {
   if (!exchange_) return;
   grid_.drop_ghosts(ps_);
+  grid_.wrap_periodic(ps_);
   // acceleration() and density_rate() are stale after this (documented): their buffers are
   // the reorder's scratch, as in evaluate().
   exchange_->migrate(ps_, -1, lent_force_buffers());
@@ -199,10 +202,12 @@ void Simulation<D>::redistribute() {
 
 template <int D>
 void Simulation<D>::refresh_images() {
-  if (exchange_)
+  if (exchange_) {
+    if (grid_.has_local_images()) grid_.refresh_ghosts(ps_);  // periodic images of own particles
     exchange_->refresh(ps_);  // every rank calls it, with images or not
-  else if (ps_.n_ghost > 0)
+  } else if (ps_.n_ghost > 0) {
     grid_.refresh_ghosts(ps_);
+  }
 }
 
 template <int D>

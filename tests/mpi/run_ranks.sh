@@ -26,6 +26,10 @@
 #   - a plate that straddles the slab face and moves across it (a moving wall whose particles
 #     migrate between the ranks; tests/data/mpi_plate2d.yaml) on 1 and 2 ranks: the runs agree
 #     as above, and part of the plate crossed the face;
+#   - periodic boundaries (cases/film_slope2d.yaml made 0.12 m long, so the slabs lie along the
+#     periodic x axis and form a ring; fixed dt, 0.02 s) on 1, 2 and 3 ranks, and restarted
+#     from a 2-rank checkpoint on 2 ranks (bit for bit) and on 3: the runs agree as above, and
+#     particles crossed the periodic face;
 #   - restart at the worst moment for the slabs: a 2-rank run (fixed dt, a rebalance every 50
 #     steps) checkpointed at step 250, so the restart's first evaluation rebalances; bit for
 #     bit the uninterrupted run (and check_ranks.py checks the checkpoint is at that step).
@@ -105,4 +109,19 @@ run 2 --restart rb_re $rb --set time.end=0.014 > rb_re.log
 plate="$here/../data/mpi_plate2d.yaml"
 "$swell" run "$plate" -q -t 1 -o p1 > p1.log
 "$mpirun" --oversubscribe -np 2 "$swell" run "$plate" -q -t 1 -o p2 > p2.log
+# Periodic boundaries with the slabs along the periodic axis (a ring): the film flume made
+# 0.12 m long, pulled along x by 5 m/s^2 so that its surface crosses the periodic face.
+film="$here/../../cases/film_slope2d.yaml"
+pf="--set domain.max=[0.12,0.04] --set bodies.0.shape.box.max=[0.12,0.03]
+  --set bodies.1.shape.box.max=[0.12,0.02] --set physics.gravity=[5.0,-9.8]
+  --set time.dt_fixed=2e-5 --set output.every=0.01"
+"$swell" run "$film" -q -t 1 -o pf1 $pf --set time.end=0.02 > pf1.log
+"$mpirun" --oversubscribe -np 2 "$swell" run "$film" -q -t 1 -o pf2 $pf --set time.end=0.02 > pf2.log
+"$mpirun" --oversubscribe -np 3 "$swell" run "$film" -q -t 1 -o pf3 $pf --set time.end=0.02 > pf3.log
+"$mpirun" --oversubscribe -np 2 "$swell" run "$film" -q -t 1 -o pfh $pf --set time.end=0.01 > pfh.log
+for n in 2 3; do
+  cp -r pfh "pfre$n"
+  "$mpirun" --oversubscribe -np "$n" "$swell" run "$film" -q -t 1 --restart "pfre$n" $pf \
+    --set time.end=0.02 > "pfre$n.log"
+done
 exec python3 "$here/check_ranks.py" "$work"
