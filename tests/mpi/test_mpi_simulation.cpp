@@ -282,8 +282,9 @@ TEST(MpiSimulation, ShiftingDamBreakMatchesOneRankWithAFixedStep) {
 // Periodic boundaries on several ranks (parallel/halo.hpp: a ring of slabs along a periodic
 // slab axis, periodic images carried with the halo on the other axes), fixed step, against one
 // rank within the same bounds as the dam break. Checked by hand (2026-12-06): with the sends
-// across the periodic faces switched off the same runs of `swell run` (film case below, 0.05
-// s) differ by 0.12 m (slabs along x) and 1.8e-4 m (slabs along y) against 8e-8 / 3e-9 m.
+// across the periodic faces switched off these three tests miss by 0.27, 0.032 and 0.17 dp on
+// 2 ranks (bounds 0.0025-0.0042 dp), and `swell run` of the film (0.05 s) by 0.12 m (slabs
+// along x) and 1.8e-4 m (along y) against 8e-8 / 3e-9 m.
 //
 // cases/film_slope2d.yaml (mDBC bed, periodic along x) with a 2 m/s^2 slope and the fluid
 // started at 0.2 m/s along x, so particles cross the periodic faces: `long_x` makes the flume
