@@ -31,13 +31,14 @@ class DbcBoundary final : public BoundaryModel<D> {
   std::string name() const override { return "dbc"; }
   // The pair loop with DBC's wall selection (defined in bc/dbc.cpp, where the loop is compiled).
   void forces(StepState<D>& s) override;
-  // Serial: a compare-and-select over the densities costs less than the barrier of a parallel
-  // region (~10 us for 2e4 particles), and it runs after every integration substep.
+  // Parallel like the integration before it, each thread on its own particles: a serial pass
+  // would first pull the other threads' densities into one core's cache.
   void finish_density(StepState<D>& s) override {
     ParticleSet<D>& ps = s.particles;
     const double rho0 = s.params.rho0;
-    const std::size_t n = ps.size();
-    for (std::size_t i = 0; i < n; ++i)
+    const long n = static_cast<long>(ps.size());
+#pragma omp parallel for schedule(static) if (n > ParticleSet <D>::kParallelMin)
+    for (long i = 0; i < n; ++i)
       if (is_wall(ps.role[i]) && ps.rho[i] < rho0) ps.rho[i] = rho0;
   }
 };

@@ -27,6 +27,8 @@
 // the other axes), ordered by cell together with the remote ones.
 #pragma once
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -155,34 +157,78 @@ class CellGrid {
     const long ln = static_cast<long>(n);
     const auto excluded_cell = static_cast<std::uint32_t>(num_cells_);
     cell_of_.resize(n);
+    order_.resize(n);
     std::size_t non_finite = 0, out_of_domain = 0;
-#pragma omp parallel for schedule(static) reduction(+ : non_finite, out_of_domain) \
-    if (ln > ParticleSet<D>::kParallelMin)
-    for (long i = 0; i < ln; ++i) {
-      const bool finite =
-          ps.pos[i].allFinite() && ps.vel[i].allFinite() && std::isfinite(ps.rho[i]);
-      if (!finite) {
-        cell_of_[i] = excluded_cell;
-        ++non_finite;
-      } else if (!inside_domain(ps.pos[i])) {
-        cell_of_[i] = excluded_cell;
-        ++out_of_domain;
-      } else {
-        cell_of_[i] = cell_index(ps.pos[i]);
+    const int max_threads = omp_get_max_threads();
+    if (static_cast<int>(counts_.size()) < max_threads) {  // once
+      counts_.resize(max_threads);
+      cursors_.resize(max_threads);
+      count_range_.resize(max_threads);
+    }
+    // A stable counting sort by cell in one parallel region, each thread on the particles
+    // schedule(static) gives it (thread_cells): its cell ids and a histogram of its own over the
+    // cells its particles fall in (a narrow range: the particles were sorted a step ago), the
+    // cell starts summed by one thread, then each thread scatters its particles after the
+    // earlier threads' ones in every cell. The order is the serial sort's (within a cell by
+    // index). start_[c] becomes the first index of cell c.
+#pragma omp parallel reduction(+ : non_finite, out_of_domain) if (ln > ParticleSet <D>::kParallelMin)
+    {
+      const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+      const std::size_t q = n / nt, r = n % nt;
+      const std::size_t i0 = t * q + std::min<std::size_t>(t, r),
+                        i1 = i0 + q + (t < static_cast<int>(r));
+      std::uint32_t lo = excluded_cell, hi = 0;
+      for (std::size_t i = i0; i < i1; ++i) {
+        const bool finite =
+            ps.pos[i].allFinite() && ps.vel[i].allFinite() && std::isfinite(ps.rho[i]);
+        std::uint32_t c = excluded_cell;
+        if (!finite)
+          ++non_finite;
+        else if (!inside_domain(ps.pos[i]))
+          ++out_of_domain;
+        else
+          c = static_cast<std::uint32_t>(cell_index(ps.pos[i]));
+        cell_of_[i] = c;
+        lo = std::min(lo, c);
+        hi = std::max(hi, c);
       }
+      // The thread's histogram and cursors over its cells [lo, hi] (grown rarely, amortised).
+      const std::size_t span = lo <= hi ? hi - lo + 1 : 0;
+      if (counts_[t].size() < span) {
+        counts_[t].resize(span + span / 2);
+        cursors_[t].resize(span + span / 2);
+      }
+      std::uint32_t* cnt = counts_[t].data();  // cell lo + k at k
+      std::fill(cnt, cnt + span, 0u);
+      for (std::size_t i = i0; i < i1; ++i) ++cnt[cell_of_[i] - lo];
+      count_range_[t] = {lo, hi};
+#pragma omp barrier
+#pragma omp single
+      {
+        start_[0] = 0;
+        for (std::size_t c = 0; c <= num_cells_; ++c) {
+          std::uint32_t k = 0;
+          for (int u = 0; u < nt; ++u)
+            if (c >= count_range_[u][0] && c <= count_range_[u][1])
+              k += counts_[u][c - count_range_[u][0]];
+          start_[c + 1] = start_[c] + k;
+        }
+      }
+      // Cursors: the cell's start plus the earlier threads' particles in it.
+      std::uint32_t* cur = cursors_[t].data();  // cell lo + k at k
+      for (std::size_t c = lo; c < lo + span; ++c) {
+        std::uint32_t at = start_[c];
+        for (int u = 0; u < t; ++u)
+          if (c >= count_range_[u][0] && c <= count_range_[u][1])
+            at += counts_[u][c - count_range_[u][0]];
+        cur[c - lo] = at;
+      }
+      for (std::size_t i = i0; i < i1; ++i)
+        order_[cur[cell_of_[i] - lo]++] = static_cast<std::uint32_t>(i);
     }
     SortResult result;
     result.non_finite = non_finite;
     result.out_of_domain = out_of_domain;
-    // Counting sort: start_[c] becomes the first index of cell c. The histogram and the
-    // scatter are serial (a few ns per particle); the gathers below are parallel.
-    std::fill(start_.begin(), start_.end(), 0u);
-    for (std::size_t i = 0; i < n; ++i) ++start_[cell_of_[i] + 1];
-    for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
-    order_.resize(n);
-    cursor_.assign(start_.begin(), start_.end());
-    for (std::size_t i = 0; i < n; ++i)
-      order_[cursor_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
     if (how.in_place) {
       ps.permute_in_place(order_, how.follow_vec, how.follow_dbl);
     } else {
@@ -197,14 +243,18 @@ class CellGrid {
     // cells holding fluid: wall cells with no fluid around them can skip the pair loop.
     has_fluid_.resize(num_cells_);
     const long ncells = static_cast<long>(num_cells_);
-#pragma omp parallel for schedule(static) if (ln > ParticleSet <D>::kParallelMin)
-    for (long c = 0; c < ncells; ++c) {
-      std::uint8_t any = 0;
-      for (std::uint32_t i = start_[c]; i < start_[c + 1]; ++i) {
-        cell_of_[i] = static_cast<std::uint32_t>(c);
-        any |= ps.role[i] == Role::Fluid;
+#pragma omp parallel if (ln > ParticleSet <D>::kParallelMin)
+    {
+      long c0 = 0, c1 = ncells;
+      thread_cells(omp_get_thread_num(), omp_get_num_threads(), c0, c1);
+      for (long c = c0; c < c1; ++c) {
+        std::uint8_t any = 0;
+        for (std::uint32_t i = start_[c]; i < start_[c + 1]; ++i) {
+          cell_of_[i] = static_cast<std::uint32_t>(c);
+          any |= ps.role[i] == Role::Fluid;
+        }
+        has_fluid_[c] = any;
       }
-      has_fluid_[c] = any;
     }
     for (std::uint32_t i = start_[num_cells_]; i < start_[num_cells_ + 1]; ++i)
       cell_of_[i] = excluded_cell;
@@ -277,6 +327,23 @@ class CellGrid {
   }
   std::uint32_t cell_of(std::size_t i) const {
     return cell_of_[i];
+  }
+
+  // The cells [first, last) of thread t of nt: those whose first particle lies in the share of
+  // the active particles that OpenMP's schedule(static) gives thread t of nt (libgomp: the
+  // first n % nt threads take one more). Cell loops split this way touch the particles the
+  // particle loops (schedule(static)) give the same thread, so a step's data stays in that
+  // core's cache instead of crossing to the other's (two vCPUs on different host dies here
+  // take 3-5x longer per cache-line transfer than on one).
+  void thread_cells(int t, int nt, long& first, long& last) const {
+    const std::size_t n = start_[num_cells_], q = n / nt, r = n % nt;
+    auto split = [&](std::size_t k) { return k * q + std::min(k, r); };
+    auto cell_at = [&](std::size_t i) {
+      return static_cast<long>(std::lower_bound(start_.begin(), start_.begin() + num_cells_, i) -
+                               start_.begin());
+    };
+    first = t == 0 ? 0 : cell_at(split(t));
+    last = t + 1 == nt ? static_cast<long>(num_cells_) : cell_at(split(t + 1));
   }
 
   // Calls fn(begin, end) for the 3^(D-1) contiguous index ranges covering the 3^D cells around
@@ -451,6 +518,10 @@ class CellGrid {
   std::array<long, D> n_{};
   std::size_t num_cells_ = 0;
   std::vector<std::uint32_t> start_, cursor_, order_, cell_of_;
+  // sort(): each thread's histogram and cursors over its cells [first, last] (count_range_),
+  // stored from index 0 for cell `first`.
+  std::vector<std::vector<std::uint32_t>> counts_, cursors_;
+  std::vector<std::array<std::uint32_t, 2>> count_range_;
   std::vector<std::uint8_t> has_fluid_;
   // Periodic axes and images.
   std::array<bool, D> periodic_{};

@@ -108,8 +108,11 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
     // (the reduction stores could otherwise alias them): ~6 % on B3D.
     Evaluator local = ev;
     std::vector<std::uint32_t>& nbv = lists.lists[omp_get_thread_num()];
-#pragma omp for schedule(dynamic, 16)
-    for (long c = 0; c < ncells; ++c) {
+    // Each thread takes the cells of the particles the static particle loops give it
+    // (CellGrid::thread_cells): no dynamic schedule, whose cells land on either thread.
+    long c_first = 0, c_last = ncells;
+    grid.thread_cells(omp_get_thread_num(), omp_get_num_threads(), c_first, c_last);
+    for (long c = c_first; c < c_last; ++c) {
       const std::uint32_t cb = grid.begin(c), ce = grid.end(c);
       if (cb == ce) continue;
       if (Select::kSkipDryCells && !grid.fluid_near(c)) {  // nothing to gather

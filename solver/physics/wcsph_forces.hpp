@@ -33,6 +33,7 @@ struct ForceBuffers {
   std::vector<float> rows;
   double visc_dt_max = 0.0;  // max over pairs of h |v_ab.r_ab| / (r^2 + eta^2), for dt
   double cs_max = 0.0;
+  bool one_mass = false;  // every stored particle has the same mass (compute_pressure)
   NeighbourLists neighbours;
 
   // At least n entries in each of the rates' buffers. Capacity grows with 1/8 headroom, since
@@ -79,13 +80,21 @@ void compute_pressure(const ParticleSet<D>& ps, const TaitEos& eos, ForceBuffers
       rows[4 * i + 3] = static_cast<float>(out.prs[i]);
     }
   };
-#pragma omp parallel for schedule(static) reduction(max : rho_max)
+  // One mass for every particle (the lattice fill's) makes the mass a constant in the pair
+  // terms: checked here, in the parallel pass, rather than by a serial one over all particles.
+  const std::size_t stored = ps.stored();
+  const double m0 = stored > 0 ? ps.mass[0] : 0.0;
+  int differs = 0;
+#pragma omp parallel for schedule(static) reduction(max : rho_max) reduction(| : differs)
   for (long i = 0; i < n; ++i) {
     one(static_cast<std::size_t>(i));
     rho_max = std::max(rho_max, static_cast<double>(ps.rho[i]));
+    differs |= ps.mass[i] != m0;
   }
   // Periodic images: the same values as their sources (their densities are copies).
-  for (std::size_t i = ps.ghost_begin(); i < ps.stored(); ++i) one(i);
+  for (std::size_t i = ps.ghost_begin(); i < stored; ++i) one(i);
+  for (std::size_t i = static_cast<std::size_t>(n); i < stored; ++i) differs |= ps.mass[i] != m0;
+  out.one_mass = stored > 0 && !differs;
   out.cs_max = eos.sound_speed(rho_max);  // c grows with rho
 }
 
@@ -101,10 +110,7 @@ void compute_forces(const ParticleSet<D>& ps, const CellGrid<D>& grid, const Sol
     auto run = [&](auto ev) {
       f.visc_dt_max = for_each_pair<D, Select>(ps, grid, kernel.support(), ev, f.neighbours);
     };
-    // One mass for every particle (the lattice fill's): a constant in the pair terms.
-    const std::size_t stored = ps.stored();
-    bool one_mass = stored > 0;
-    for (std::size_t i = 1; i < stored && one_mass; ++i) one_mass = ps.mass[i] == ps.mass[0];
+    const bool one_mass = f.one_mass;  // from compute_pressure
     if (prm.viscosity == ViscosityModel::Artificial && tait7 && one_mass)
       run(WcsphEvaluator<D, K, ViscosityModel::Artificial, Select, true, true>(
           ps, prm, kernel, f.prs.data(), f.cs.data(), f.drho.data(), f.ace.data(), f.rows.data()));

@@ -256,20 +256,38 @@ void Simulation<D>::step() {
 
   // Density bounds (fluid): excluded and counted as DualSPHysics' RhopOut.
   const double lo = prm_.rho_min_factor * prm_.rho0, hi = prm_.rho_max_factor * prm_.rho0;
-  // One pass also counts the fluid still in the run (no second O(N) scan per step).
+  // One parallel pass counts the fluid still in the run and the fluid out of bounds (each
+  // thread on the particles it integrated); the rare step with some out of bounds excludes
+  // them in a serial pass.
   std::size_t out = 0, fluid_left = 0;
-  for (std::size_t i = 0; i < ps_.size(); ++i) {
+  auto out_of_bounds = [&](std::size_t i) {
+    return std::isfinite(ps_.rho[i]) && (ps_.rho[i] < lo || ps_.rho[i] > hi);
+  };
+  const long n = static_cast<long>(ps_.size());
+#pragma omp parallel for schedule(static) reduction(+ : out, fluid_left) \
+    if (n > ParticleSet <D>::kParallelMin)
+  for (long i = 0; i < n; ++i) {
     if (!is_fluid(ps_.role[i])) continue;
-    if (std::isfinite(ps_.rho[i]) && (ps_.rho[i] < lo || ps_.rho[i] > hi)) {
-      const double ratio = ps_.rho[i] > 0.0
-                               ? std::max(ps_.rho[i] / prm_.rho0, prm_.rho0 / ps_.rho[i])
-                               : std::numeric_limits<double>::infinity();
-      if (ratio > worst_rho_.ratio)
-        worst_rho_ = {ratio, ps_.rho[i], time_ + dt_, ps_.id[i], ps_.pos[i]};
-      ps_.pos[i].setConstant(std::numeric_limits<double>::quiet_NaN());
+    if (out_of_bounds(i))
       ++out;
-    } else {
+    else
       ++fluid_left;
+  }
+  if (out > 0) {  // counted again, with the exclusions
+    out = fluid_left = 0;
+    for (std::size_t i = 0; i < ps_.size(); ++i) {
+      if (!is_fluid(ps_.role[i])) continue;
+      if (out_of_bounds(i)) {
+        const double ratio = ps_.rho[i] > 0.0
+                                 ? std::max(ps_.rho[i] / prm_.rho0, prm_.rho0 / ps_.rho[i])
+                                 : std::numeric_limits<double>::infinity();
+        if (ratio > worst_rho_.ratio)
+          worst_rho_ = {ratio, ps_.rho[i], time_ + dt_, ps_.id[i], ps_.pos[i]};
+        ps_.pos[i].setConstant(std::numeric_limits<double>::quiet_NaN());
+        ++out;
+      } else {
+        ++fluid_left;
+      }
     }
   }
   if (out > 0) {
