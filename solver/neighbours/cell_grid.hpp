@@ -204,24 +204,22 @@ class CellGrid {
       count_range_[t] = {lo, hi};
 #pragma omp barrier
 #pragma omp single
-      {
-        start_[0] = 0;
-        for (std::size_t c = 0; c <= num_cells_; ++c) {
-          std::uint32_t k = 0;
-          for (int u = 0; u < nt; ++u)
-            if (c >= count_range_[u][0] && c <= count_range_[u][1])
-              k += counts_[u][c - count_range_[u][0]];
-          start_[c + 1] = start_[c] + k;
-        }
+      {  // O(cells + the threads' spans): each histogram added over its own range only
+        std::fill(start_.begin(), start_.end(), 0u);
+        for (int u = 0; u < nt; ++u)
+          for (std::uint32_t c = count_range_[u][0]; c <= count_range_[u][1]; ++c)
+            start_[c + 1] += counts_[u][c - count_range_[u][0]];
+        for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
       }
-      // Cursors: the cell's start plus the earlier threads' particles in it.
+      // Cursors: the cell's start plus the earlier threads' particles in it (where their
+      // ranges overlap this thread's: only near the range ends, the particles being sorted).
       std::uint32_t* cur = cursors_[t].data();  // cell lo + k at k
-      for (std::size_t c = lo; c < lo + span; ++c) {
-        std::uint32_t at = start_[c];
-        for (int u = 0; u < t; ++u)
-          if (c >= count_range_[u][0] && c <= count_range_[u][1])
-            at += counts_[u][c - count_range_[u][0]];
-        cur[c - lo] = at;
+      for (std::size_t k = 0; k < span; ++k) cur[k] = start_[lo + k];
+      for (int u = 0; u < t; ++u) {
+        const std::uint32_t a = std::max(lo, count_range_[u][0]),
+                            b = std::min(hi, count_range_[u][1]);
+        for (std::uint32_t c = a; c <= b && span > 0; ++c)
+          cur[c - lo] += counts_[u][c - count_range_[u][0]];
       }
       for (std::size_t i = i0; i < i1; ++i)
         order_[cur[cell_of_[i] - lo]++] = static_cast<std::uint32_t>(i);

@@ -101,7 +101,6 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
                      const Evaluator& ev, NeighbourLists& lists) {
   static_assert(sizeof(Vec<D>) == D * sizeof(double), "positions must be D packed doubles");
   const double support2 = support * support;
-  const long ncells = static_cast<long>(grid.num_cells());
   const int nthreads = omp_get_max_threads();
   if (static_cast<int>(lists.lists.size()) < nthreads) lists.lists.resize(nthreads);
   const double* P = ps.pos.data()->data();
@@ -154,7 +153,6 @@ double for_each_pair(const ParticleSet<D>& ps, const CellGrid<D>& grid, double s
     ranges[t].next.store(first, std::memory_order_relaxed);
     ranges[t].end = last;
   }
-  (void)ncells;
 #pragma omp parallel num_threads(nthreads) reduction(max : run_max)
   {
     // A private copy: its address never escapes, so the compiler keeps its parameters and
