@@ -103,7 +103,8 @@ int main(int argc, char** argv) {
       "--restart", restart_dir, "continue the run in this output folder from its last checkpoint");
   long rebalance_every = 100;
   run->add_option("--rebalance", rebalance_every,
-                  "under mpirun: balance the slabs by particle count every N steps (0: never)")
+                  "under mpirun: balance the slabs by the pair loop's estimated work every N steps "
+                  "(0: never)")
       ->check(CLI::NonNegativeNumber);
   run->add_flag("--overwrite", overwrite,
                 "replace the run the output folder already holds (else such a folder is refused)")

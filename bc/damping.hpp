@@ -144,6 +144,8 @@ class DampingZones final : public StepHook<D> {
   // Checks every zone (std::invalid_argument naming it).
   explicit DampingZones(std::vector<DampingZone> zones);
   std::string name() const override { return "damping"; }
+  bool changes_state_before_forces() const override { return false; }
+  bool reads_images_after_integration() const override { return false; }
   void after_integration(StepState<D>& s) override;
   const std::vector<DampingZone>& zones() const { return zones_; }
 
@@ -160,6 +162,8 @@ class Settling final : public StepHook<D> {
  public:
   explicit Settling(const SettlingSpec& spec);  // std::invalid_argument unless T, rate > 0
   std::string name() const override { return "settling"; }
+  bool changes_state_before_forces() const override { return false; }
+  bool reads_images_after_integration() const override { return false; }
   void after_integration(StepState<D>& s) override;
   const SettlingSpec& spec() const { return spec_; }
 

@@ -29,6 +29,8 @@ class DbcBoundary final : public BoundaryModel<D> {
  public:
   using Selection = WallsSeeFluid;
   std::string name() const override { return "dbc"; }
+  bool changes_state_before_forces() const override { return false; }
+  bool reads_images_after_integration() const override { return false; }
   // The pair loop with DBC's wall selection (defined in bc/dbc.cpp, where the loop is compiled).
   void forces(StepState<D>& s) override;
   // Parallel like the integration before it, each thread on its own particles: a serial pass

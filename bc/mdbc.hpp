@@ -110,6 +110,8 @@ class MdbcBoundary final : public BoundaryModel<D> {
   std::string name() const override { return "mdbc"; }
   // Wall densities (and, without the default slip mode, velocities) from the ghost nodes.
   void before_forces(StepState<D>& s) override;
+  // Sets the walls' density (images refreshed after it); nothing after the integration.
+  bool reads_images_after_integration() const override { return false; }
   // The pair loop with DBC's selection (bc/mdbc.cpp).
   void forces(StepState<D>& s) override;
   // Walls' drho/dt = 0; wall velocities back to their body's.

@@ -55,6 +55,9 @@ class MovingBodies final : public StepHook<D> {
   }
 
   std::string name() const override { return "motion"; }
+  // Moves walls in prescribe (before the next halo build); the absorbers read owned particles.
+  bool changes_state_before_forces() const override { return false; }
+  bool reads_images_after_integration() const override { return false; }
   const std::vector<MotionLaw>& laws() const { return laws_; }
 
   static bool any_moves(const std::vector<MotionLaw>& laws) {

@@ -10,10 +10,12 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -94,12 +96,14 @@ int longest_axis(const Vec<D>& lo, const Vec<D>& hi) {
 // least min_width wide (the kernel support); throws if the domain cannot hold size() such
 // slabs. Collective: every rank calls it with the same arguments and gets the same bounds.
 // `count` > 0: that many slabs instead of one per rank (e.g. from the whole set on every rank
-// with Comm::self(), at the start of a run). `fluid_only`: count the fluid particles only (the
-// time loop's weight: a step's work is in the fluid's pair terms; DBC walls see fluid only and
-// dry wall cells are skipped, so a slab of walls costs little); with no fluid, all particles.
+// with Comm::self(), at the start of a run). `fluid_only`: count the fluid particles only (a
+// step's work is mostly in the fluid's pair terms; DBC walls see fluid only and dry wall cells
+// are skipped, so a slab of walls costs little); with no fluid, all particles. `weight` (one
+// per active particle, e.g. pair_work's estimate): split the summed weights instead of counts.
 template <int D>
 Slabs balanced_slabs(const ParticleSet<D>& ps, int axis, double lo, double hi, double min_width,
-                     const Comm& comm, int bins = 4096, int count = 0, bool fluid_only = false) {
+                     const Comm& comm, int bins = 4096, int count = 0, bool fluid_only = false,
+                     const std::vector<std::uint32_t>* weight = nullptr) {
   const int n = count > 0 ? count : comm.size();
   if (!(hi - lo >= n * min_width))
     throw std::invalid_argument(
@@ -108,17 +112,19 @@ Slabs balanced_slabs(const ParticleSet<D>& ps, int axis, double lo, double hi, d
         std::to_string(hi - lo) + " m along " + std::string(1, "xyz"[axis]) + "; use fewer ranks");
   std::vector<std::uint64_t> hist(static_cast<std::size_t>(bins), 0);
   const double w = (hi - lo) / bins;
+  if (weight && weight->size() != ps.size())
+    throw std::logic_error("balanced_slabs: one weight per active particle");
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const double x = ps.pos[i][axis];
-    if (!std::isfinite(x) || (fluid_only && !is_fluid(ps.role[i]))) continue;
+    if (!std::isfinite(x) || (!weight && fluid_only && !is_fluid(ps.role[i]))) continue;
     const int b = std::clamp(static_cast<int>((x - lo) / w), 0, bins - 1);
-    ++hist[static_cast<std::size_t>(b)];
+    hist[static_cast<std::size_t>(b)] += weight ? (*weight)[i] : 1u;
   }
   comm.sum_in_place(hist);
   std::uint64_t total = 0;
   for (auto c : hist) total += c;
-  if (total == 0 && fluid_only)
-    return balanced_slabs(ps, axis, lo, hi, min_width, comm, bins, count, false);
+  if (total == 0 && (fluid_only || weight))  // no work anywhere: fall back to counts
+    return balanced_slabs(ps, axis, lo, hi, min_width, comm, bins, count, weight && fluid_only);
   Slabs s = even_slabs(axis, lo, hi, n);
   if (total == 0 || n == 1) return s;
   // Cut r at the first bin edge where the running count reaches r N / n, then push the cuts
@@ -139,6 +145,71 @@ Slabs balanced_slabs(const ParticleSet<D>& ps, int axis, double lo, double hi, d
   return s;
 }
 
+// An estimate of each active particle's share of a step's work, for balanced_slabs, in the
+// units of one candidate test. A particle in a cell with fluid in the 3^D cells around it
+// (neighbours/pair_driver.hpp skips the others) tests every particle of those cells for the
+// kernel support (N_all tests), then evaluates the pair terms of the neighbours it sees: every
+// role for a fluid particle, fluid only for a wall one (DBC, mDBC); a neighbour is about a
+// sixth of the candidates in 3D (sphere over 27 cells) and a third in 2D, and its terms cost
+// about six candidate tests (16-lane float: the staging and the terms against the AVX-512
+// distance test of 8 doubles), so the terms weigh about N_seen in 3D and 2 N_seen in 2D:
+// weight = N_all + (4 - D) N_seen. Counted on a grid of the kernel support over the domain
+// [dmin, dmax] (the cell grid's layout: a layer of padding cells on every side), from this
+// rank's particles (halo images are dropped when it runs, so a particle near a slab face misses
+// the other side's part, alike on both sides). `count_all`/`count_fluid`: per-cell scratch kept
+// by the caller. Particles outside the domain weigh nothing.
+template <int D>
+void pair_work(const ParticleSet<D>& ps, const Vec<D>& dmin, const Vec<D>& dmax, double cell,
+               std::vector<std::uint32_t>& count_all, std::vector<std::uint32_t>& count_fluid,
+               std::vector<std::uint32_t>& weight) {
+  std::array<long, D> n{};
+  std::array<long, D> stride{};
+  long cells = 1;
+  for (int d = 0; d < D; ++d) {
+    n[d] = static_cast<long>(std::floor((dmax[d] - dmin[d]) / cell)) + 3;
+    stride[d] = cells;
+    cells *= n[d];
+  }
+  count_all.assign(static_cast<std::size_t>(cells), 0u);
+  count_fluid.assign(static_cast<std::size_t>(cells), 0u);
+  const std::size_t np = ps.size();
+  weight.assign(np, 0u);
+  const auto cell_of = [&](const Vec<D>& x) -> long {
+    long c = 0;
+    for (int d = 0; d < D; ++d) {
+      if (!(x[d] >= dmin[d] && x[d] <= dmax[d])) return -1;
+      c += (static_cast<long>((x[d] - dmin[d]) / cell) + 1) * stride[d];
+    }
+    return c;
+  };
+  for (std::size_t i = 0; i < np; ++i) {
+    const long c = cell_of(ps.pos[i]);
+    if (c < 0) continue;
+    ++count_all[static_cast<std::size_t>(c)];
+    if (is_fluid(ps.role[i])) ++count_fluid[static_cast<std::size_t>(c)];
+  }
+  // The 3^D neighbour offsets (a cell inside the domain has all of them in the grid).
+  std::array<long, 27> off{};
+  int noff = 0;
+  for (int k = 0; k < (D == 2 ? 9 : 27); ++k) {
+    long o = 0;
+    for (int d = 0, q = k; d < D; ++d, q /= 3) o += (q % 3 - 1) * stride[d];
+    off[static_cast<std::size_t>(noff++)] = o;
+  }
+  for (std::size_t i = 0; i < np; ++i) {
+    const long c = cell_of(ps.pos[i]);
+    if (c < 0) continue;
+    std::uint32_t all = 0, fluid = 0;
+    for (int k = 0; k < noff; ++k) {
+      const auto cc = static_cast<std::size_t>(c + off[static_cast<std::size_t>(k)]);
+      all += count_all[cc];
+      fluid += count_fluid[cc];
+    }
+    if (fluid == 0) continue;  // a dry cell: skipped by the pair loop
+    weight[i] = all + static_cast<std::uint32_t>(4 - D) * (is_fluid(ps.role[i]) ? all : fluid);
+  }
+}
+
 // Largest rank's active particle count over the mean (1 = perfect balance).
 template <int D>
 double imbalance(const ParticleSet<D>& ps, const Comm& comm) {
@@ -149,9 +220,10 @@ double imbalance(const ParticleSet<D>& ps, const Comm& comm) {
 }
 
 // Sends every active particle that lies outside this rank's slab to its owner and takes in
-// those that arrive (appended to the active range, before the excluded particles). The order
-// of the particles that stay is kept; arrivals follow in sender-rank order, each sender's in
-// its own order, so the result is deterministic for a fixed rank count. Periodic images must
+// those that arrive (in sender-rank order, each sender's in its own order) into the leaving
+// ones' slots, then after the active range (before the excluded particles); slots left empty
+// take the last staying particles. Only particles that move are copied, and the layout follows
+// from the data alone, so the result is deterministic for a fixed rank count. Periodic images must
 // have been dropped. The buffers are the caller's and are reused (no allocation once grown).
 // `neighbours_first`: when no particle on any rank goes further than the next slab (one
 // allreduce tells), the records travel point to point to the two neighbours
@@ -160,8 +232,8 @@ double imbalance(const ParticleSet<D>& ps, const Comm& comm) {
 struct MigrationBuffers {
   std::vector<std::byte> send, recv;
   std::vector<int> send_count, recv_count, recv_displ;
-  std::vector<int> dest;               // per active particle: its owner
-  std::vector<std::uint32_t> order;    // staying particles, then the excluded ones
+  std::vector<int> dest;               // per leaving particle: its owner
+  std::vector<std::uint32_t> order;    // the leaving particles, then the arrivals' slots
   std::vector<std::size_t> cursor;     // packing offsets per destination rank
   std::size_t sent = 0, received = 0;  // particles, this call
 };
@@ -170,27 +242,33 @@ struct MigrationBuffers {
 // the last rank are neighbours too.
 template <int D>
 void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, MigrationBuffers& buf,
-             bool neighbours_first = false, const LentScratch<D>& lent = {}, bool ring = false) {
+             bool neighbours_first = false, bool ring = false) {
   if (ps.n_ghost != 0) throw std::logic_error("migrate: drop the periodic images first");
   const int me = comm.rank(), n = comm.size();
   if (slabs.size() != n) throw std::invalid_argument("migrate: one slab per rank");
   const int below = ring ? (me + n - 1) % n : me - 1, above = ring ? (me + 1) % n : me + 1;
   const std::size_t rec = record_bytes(ps), na = ps.size(), total = ps.total();
-  buf.dest.resize(na);
   buf.send_count.assign(static_cast<std::size_t>(n), 0);
-  std::size_t leaving = 0;
+  // The leaving particles (ascending) and their owners. Own slab [lo, hi); the first and the
+  // last slab reach on to -inf and +inf (Slabs::owner). A non-finite position stays here: the
+  // sort excludes it.
+  buf.order.clear();
+  buf.dest.clear();
+  const double own_lo = me > 0 ? slabs.lo[static_cast<std::size_t>(me)]
+                               : -std::numeric_limits<double>::infinity(),
+               own_hi = me + 1 < n ? slabs.lo[static_cast<std::size_t>(me) + 1]
+                                   : std::numeric_limits<double>::infinity();
   bool far = false;
   for (std::size_t i = 0; i < na; ++i) {
     const double x = ps.pos[i][slabs.axis];
-    // A non-finite position stays here: the sort excludes it.
-    const int o = std::isfinite(x) ? slabs.owner(x) : me;
-    buf.dest[i] = o;
-    if (o != me) {
-      buf.send_count[static_cast<std::size_t>(o)] += static_cast<int>(rec);
-      ++leaving;
-      far = far || (o != below && o != above);
-    }
+    if ((x >= own_lo && x < own_hi) || !std::isfinite(x)) continue;
+    const int o = slabs.owner(x);
+    buf.order.push_back(static_cast<std::uint32_t>(i));
+    buf.dest.push_back(o);
+    buf.send_count[static_cast<std::size_t>(o)] += static_cast<int>(rec);
+    far = far || (o != below && o != above);
   }
+  const std::size_t leaving = buf.order.size();
   const bool neighbours = neighbours_first && n > 1 && comm.max(far ? 1.0 : 0.0) == 0.0;
   // Pack in destination-rank order.
   if (buf.send.size() < leaving * rec) buf.send.resize(leaving * rec);
@@ -202,10 +280,9 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
       cursor[static_cast<std::size_t>(r)] = off;
       off += static_cast<std::size_t>(buf.send_count[static_cast<std::size_t>(r)]);
     }
-    for (std::size_t i = 0; i < na; ++i) {
-      if (buf.dest[i] == me) continue;
-      auto& c = cursor[static_cast<std::size_t>(buf.dest[i])];
-      pack(ps, i, buf.send.data() + c);
+    for (std::size_t k = 0; k < leaving; ++k) {
+      auto& c = cursor[static_cast<std::size_t>(buf.dest[k])];
+      pack(ps, buf.order[k], buf.send.data() + c);
       c += rec;
     }
   }
@@ -247,32 +324,54 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
                                " sent records of another size (its optional fields differ)");
     arriving += bytes / rec;
   }
-  // New layout: staying active particles, arrivals, then the excluded ones.
-  buf.order.clear();
-  for (std::size_t i = 0; i < na; ++i)
-    if (buf.dest[i] == me) buf.order.push_back(static_cast<std::uint32_t>(i));
-  const std::size_t stay = buf.order.size();
-  for (std::size_t i = na; i < total; ++i) buf.order.push_back(static_cast<std::uint32_t>(i));
+  // New layout, copying only the particles that move (a permutation of the whole set here
+  // cost as much as the sort that follows): the arrivals (rank order, then as sent) take the
+  // leaving particles' slots in index order, then go after the active particles; leaving slots
+  // left over take the last staying particles; the excluded particles stay last. The order is
+  // fixed by the data, so a run on a given number of ranks stays deterministic.
   if (leaving > 0 || arriving > 0) {
-    // Keep the staying and excluded particles (permute to the front), then grow by the
-    // arrivals and move the excluded block behind them.
-    ps.permute(buf.order, lent);  // size() is now total - leaving entries in that order
-    const std::size_t excluded = total - na, kept = stay + excluded;
-    ps.for_each_field([&](const FieldInfo& f, auto& a) {
-      if (!ps.enabled(f)) return;
-      a.resize(kept + arriving);
-      // Excluded block [stay, kept) moves to [stay + arriving, kept + arriving).
-      std::move_backward(a.begin() + static_cast<long>(stay), a.begin() + static_cast<long>(kept),
-                         a.begin() + static_cast<long>(kept + arriving));
-    });
-    std::size_t slot = stay;
+    std::vector<std::uint32_t>& holes = buf.order;  // the leaving particles, ascending
+    const std::size_t excluded = total - na, active = na - leaving + arriving;
+    const auto move_particle = [&](std::size_t from, std::size_t to) {
+      ps.for_each_field([&](const FieldInfo& f, auto& a) {
+        if (ps.enabled(f)) a[to] = a[from];
+      });
+    };
+    if (arriving > leaving) {  // grow, the excluded block moving back behind the arrivals
+      ps.for_each_field([&](const FieldInfo& f, auto& a) {
+        if (!ps.enabled(f)) return;
+        a.resize(active + excluded);
+        std::move_backward(a.begin() + static_cast<long>(na), a.begin() + static_cast<long>(total),
+                           a.begin() + static_cast<long>(active + excluded));
+      });
+      for (std::size_t i = na; i < active; ++i) holes.push_back(static_cast<std::uint32_t>(i));
+    } else if (leaving > arriving) {
+      // Slots holes[arriving..] stay empty: fill each, lowest first, with the last particle
+      // that stays (empty slots at the end are dropped as they are met). The slots the
+      // arrivals take lie below every empty one, so none of them moves.
+      std::size_t end = na, back = leaving;  // empty slots not yet handled: holes[k..back)
+      for (std::size_t k = arriving; k < back; ++k) {
+        while (back > k && holes[back - 1] + 1 == end) --back, --end;
+        if (k == back) break;
+        move_particle(end - 1, holes[k]);
+        --end;
+      }
+      if (end != active) throw std::logic_error("migrate: the compaction lost count");
+      ps.for_each_field([&](const FieldInfo& f, auto& a) {
+        if (!ps.enabled(f)) return;
+        std::move(a.begin() + static_cast<long>(na), a.begin() + static_cast<long>(total),
+                  a.begin() + static_cast<long>(active));
+        a.resize(active + excluded);
+      });
+    }
+    std::size_t slot = 0;
     for (int r = 0; r < n; ++r) {
       const std::size_t k =
           static_cast<std::size_t>(buf.recv_count[static_cast<std::size_t>(r)]) / rec;
       const std::byte* in = buf.recv.data() + buf.recv_displ[static_cast<std::size_t>(r)];
-      for (std::size_t j = 0; j < k; ++j, ++slot, in += rec) unpack(ps, slot, in);
+      for (std::size_t j = 0; j < k; ++j, ++slot, in += rec) unpack(ps, holes[slot], in);
     }
-    ps.n_active = stay + arriving;
+    ps.n_active = active;
   }
   buf.sent = leaving;
   buf.received = arriving;

@@ -1,9 +1,10 @@
 // The slab decomposition in the time loop (issue #16): SlabExchange is the Exchange
 // (solver/time/exchange.hpp) of a run on several ranks.
 //
-// - migrate: every `rebalance_every` steps the slab bounds are balanced by fluid particle count
-//   (balanced_slabs, fluid_only: the work of a step is the fluid's), then the particles that left
-//   this rank's slab go to their owners (migrate, whole records from the field table).
+// - migrate: every `rebalance_every` steps the slab bounds are balanced by the estimated work
+//   of the pair loop (balanced_slabs weighted by pair_work: the neighbours each particle's pair
+//   terms visit), then the particles that left this rank's slab go to their owners (migrate,
+//   only the particles that move are copied).
 // - build_halo (after the sort): the active particles within `width` of a slab face are sent,
 //   whole records, to the rank on the other side, which stores them as images after its own
 //   particles, placed in its cell grid (CellGrid::place_remote_images). `width` is the kernel
@@ -80,20 +81,21 @@ class SlabExchange final : public Exchange<D> {
     ring_ = grid.periodic(slabs_.axis);
   }
 
-  void migrate(ParticleSet<D>& ps, long step, const LentScratch<D>& lent = {}) override {
+  void migrate(ParticleSet<D>& ps, long step) override {
     const double t0 = wtime();
     bool rebalanced = false;
     if (rebalance_every_ > 0 && step > 0 && step % rebalance_every_ == 0 &&
         step != last_rebalance_) {
       rebalanced = true;
+      pair_work(ps, dmin_, dmax_, cell_, work_all_, work_fluid_, work_);
       slabs_ = balanced_slabs(ps, slabs_.axis, slabs_.lo.front(), slabs_.lo.back(), width_, comm_,
-                              4096, 0, true);
+                              4096, 0, true, &work_);
       last_rebalance_ = step;
       ++stats_.rebalances;
     }
     // After a rebalance particles may go to any rank; otherwise only to a neighbour (a step
     // moves a particle far less than a slab's width), checked by migrate itself.
-    parallel::migrate(ps, slabs_, comm_, mig_, !rebalanced, lent, ring_);
+    parallel::migrate(ps, slabs_, comm_, mig_, !rebalanced, ring_);
     stats_.migrated += mig_.sent;
     stats_.seconds += wtime() - t0;
   }
@@ -278,6 +280,8 @@ class SlabExchange final : public Exchange<D> {
   Vec<D> dmin_ = Vec<D>::Zero(), dmax_ = Vec<D>::Zero();
   double cell_ = 0.0;
   std::vector<std::byte> send_, recv_;
+  // The rebalance's work estimate (pair_work): per cell, then per particle.
+  std::vector<std::uint32_t> work_all_, work_fluid_, work_;
   std::vector<Vec<D>> xs_;
   HaloStats stats_;
 };

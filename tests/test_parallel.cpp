@@ -12,6 +12,7 @@
 
 #include "parallel/comm.hpp"
 #include "parallel/decomposition.hpp"
+#include "solver/neighbours/cell_grid.hpp"
 
 namespace swell::parallel {
 namespace {
@@ -124,6 +125,83 @@ TEST(ParallelMigrate, OneRankChangesNothing) {
   EXPECT_EQ(one.lo[0], -1.0);
   EXPECT_EQ(one.lo[1], 1.0);
   EXPECT_EQ(imbalance(ps, Comm::self()), 1.0);
+}
+
+// pair_work counts what the pair loop visits: for every particle, the candidates of the cell
+// grid around it (CellGrid::for_each_candidate_near, the same cells), and nothing for a wall in
+// a cell with no fluid around (the loop skips it) or a particle outside the domain.
+template <int D>
+void pair_work_matches_the_grid() {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  ParticleSet<D> ps;
+  for (int i = 0; i < 600; ++i) {
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = u(rng);
+    // Fluid in the lower half only, so some wall cells in the upper half are dry.
+    const bool fluid = i % 2 == 0;
+    if (fluid) x[D - 1] *= 0.5;
+    ps.add(x, Vec<D>::Zero(), 1000.0, 0.1, fluid ? Role::Fluid : Role::FixedWall, 0);
+  }
+  Vec<D> outside = Vec<D>::Constant(0.5);
+  outside[0] = 1.5;
+  ps.add(outside, Vec<D>::Zero(), 1000.0, 0.1, Role::Fluid, 0);
+  const Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Ones();
+  const double cell = 0.13;
+  std::vector<std::uint32_t> all, fluid, weight;
+  pair_work(ps, lo, hi, cell, all, fluid, weight);
+  ASSERT_EQ(weight.size(), ps.size());
+  EXPECT_EQ(weight.back(), 0u) << "a particle outside the domain weighs nothing";
+  CellGrid<D> grid(lo, hi, cell);
+  ParticleSet<D> sorted = ps;
+  grid.sort(sorted);
+  std::vector<std::uint32_t> expect(ps.size(), 0);
+  std::size_t dry_walls = 0;
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    std::uint32_t n_all = 0, n_fluid = 0;
+    grid.for_each_candidate_near(sorted.pos[i], [&](std::uint32_t j) {
+      ++n_all;
+      n_fluid += is_fluid(sorted.role[j]);
+    });
+    const std::uint32_t seen = is_fluid(sorted.role[i]) ? n_all : n_fluid;
+    if (n_fluid == 0) {
+      ++dry_walls;
+      EXPECT_FALSE(grid.fluid_near(grid.cell_of(i)));
+    }
+    expect[sorted.id[i]] = n_fluid == 0 ? 0 : n_all + static_cast<std::uint32_t>(4 - D) * seen;
+  }
+  EXPECT_GT(dry_walls, 0u) << "the set should hold dry walls";
+  for (std::size_t i = 0; i + 1 < ps.size(); ++i) EXPECT_EQ(weight[i], expect[ps.id[i]]) << i;
+}
+
+TEST(ParallelBalance, PairWorkCountsWhatThePairLoopVisits2D) {
+  pair_work_matches_the_grid<2>();
+}
+TEST(ParallelBalance, PairWorkCountsWhatThePairLoopVisits3D) {
+  pair_work_matches_the_grid<3>();
+}
+
+// Weighted slabs split the summed weight, not the count: all the weight on x > 0.5 puts both
+// halves of it on either side of the cut.
+TEST(ParallelBalance, WeightedSlabsSplitTheWeight) {
+  ParticleSet<2> ps;
+  std::vector<std::uint32_t> w;
+  for (int i = 0; i < 100; ++i) {
+    const double x = (i + 0.5) / 100.0;
+    ps.add(Vec<2>(x, 0.5), Vec<2>::Zero(), 1000.0, 0.1, Role::Fluid, 0);
+    w.push_back(x > 0.5 ? 3u : 0u);
+  }
+  const Slabs counted = balanced_slabs(ps, 0, 0.0, 1.0, 0.05, Comm::self(), 1000, 2);
+  const Slabs weighted = balanced_slabs(ps, 0, 0.0, 1.0, 0.05, Comm::self(), 1000, 2, true, &w);
+  EXPECT_NEAR(counted.lo[1], 0.5, 0.01);
+  EXPECT_NEAR(weighted.lo[1], 0.75, 0.01);
+  // No weight anywhere: the fluid count again.
+  std::vector<std::uint32_t> none(w.size(), 0u);
+  EXPECT_NEAR(balanced_slabs(ps, 0, 0.0, 1.0, 0.05, Comm::self(), 1000, 2, true, &none).lo[1], 0.5,
+              0.01);
+  std::vector<std::uint32_t> short_list(3, 1u);
+  EXPECT_THROW(balanced_slabs(ps, 0, 0.0, 1.0, 0.05, Comm::self(), 1000, 2, true, &short_list),
+               std::logic_error);
 }
 
 }  // namespace

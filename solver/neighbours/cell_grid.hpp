@@ -353,9 +353,15 @@ class CellGrid {
     } else {
       for_each_neighbour_row(c, [&](std::size_t row) {
         fn(start_[row - 1], start_[row + 2]);
-        fn(ghost_base_ + ghost_start_[row - 1], ghost_base_ + ghost_start_[row + 2]);
+        fn(ghost_base_ + ghost_start(row - 1), ghost_base_ + ghost_start(row + 2));
       });
     }
+  }
+  // The images stored before cell c's (ghost_start_'s window; see there).
+  std::uint32_t ghost_start(std::size_t c) const {
+    if (c <= ghost_lo_) return 0u;
+    if (c > ghost_hi_) return static_cast<std::uint32_t>(n_ghost_);
+    return ghost_start_[c - ghost_lo_];
   }
   // At most this many ranges per cell (real particles, then images, per x-row).
   static constexpr int kMaxRanges = 2 * (D == 3 ? 9 : (D == 2 ? 3 : 1));
@@ -481,8 +487,17 @@ class CellGrid {
   // ones (source's record, shifted position). slot_of: each remote candidate's slot, in order.
   void store_images(ParticleSet<D>& ps, std::vector<std::uint32_t>* slot_of) {
     const std::size_t base = ps.pos.size(), ng = cand_src_.size();
-    ghost_start_.assign(num_cells_ + 2, 0u);
-    for (std::size_t k = 0; k < ng; ++k) ++ghost_start_[cand_cell_[k] + 1];
+    // The window of cells that hold images (a band along a slab face or a periodic face): the
+    // counts over it only, not over the whole grid.
+    std::uint32_t cmin = 0, cmax = 0;
+    if (ng > 0) {
+      const auto mm = std::minmax_element(cand_cell_.begin(), cand_cell_.end());
+      cmin = *mm.first, cmax = *mm.second;
+    }
+    ghost_lo_ = cmin;
+    ghost_hi_ = ng > 0 ? cmax + 1 : cmin;
+    ghost_start_.assign(ghost_hi_ - ghost_lo_ + 1, 0u);
+    for (std::size_t k = 0; k < ng; ++k) ++ghost_start_[cand_cell_[k] - cmin + 1];
     for (std::size_t c = 0; c + 1 < ghost_start_.size(); ++c)
       ghost_start_[c + 1] += ghost_start_[c];
     ghost_src_.resize(ng);
@@ -491,7 +506,7 @@ class CellGrid {
     if (slot_of) slot_of->resize(ng - n_local_images_);
     cursor_.assign(ghost_start_.begin(), ghost_start_.end());
     for (std::size_t k = 0; k < ng; ++k) {
-      const std::uint32_t slot = cursor_[cand_cell_[k]]++;
+      const std::uint32_t slot = cursor_[cand_cell_[k] - cmin]++;
       ghost_src_[slot] = cand_src_[k];
       ghost_shift_[slot] = cand_shift_[k];
       ghost_cell_[slot] = cand_cell_[k];
@@ -527,7 +542,10 @@ class CellGrid {
   std::size_t n_local_images_ = 0;  // images whose source is on this rank (periodic)
   std::size_t n_ghost_ = 0;
   std::uint32_t ghost_base_ = 0;
+  // ghost_start(c) = the images in cells before c: ghost_start_[c - ghost_lo_] over the window
+  // [ghost_lo_, ghost_hi_], none before it, all of them after it.
   std::vector<std::uint32_t> ghost_start_, ghost_src_, ghost_cell_, cand_src_, cand_cell_;
+  std::size_t ghost_lo_ = 0, ghost_hi_ = 0;
   std::vector<Vec<D>> ghost_shift_, cand_shift_;
 };
 

@@ -32,6 +32,8 @@ class ShepardReinit final : public StepHook<D> {
  public:
   explicit ShepardReinit(int every) : every_(every) {}
   std::string name() const override { return "shepard"; }
+  // Changes fluid densities before the forces; after the integration it only counts steps.
+  bool reads_images_after_integration() const override { return false; }
 
   void before_forces(StepState<D>& s) override {
     if (!pending_) return;
@@ -82,6 +84,8 @@ class KernelGradientCorrection final : public StepHook<D> {
  public:
   explicit KernelGradientCorrection(double det_min) : det_min_(det_min) {}
   std::string name() const override { return "kgc"; }
+  bool changes_state_before_forces() const override { return false; }
+  bool reads_images_after_integration() const override { return false; }
 
   void after_forces(StepState<D>& s) override {
     ParticleSet<D>& ps = s.particles;

@@ -31,8 +31,7 @@ class Exchange {
   // across a periodic face sends its particles shifted by the period).
   virtual void configure(const CellGrid<D>&) {}
   // Before the sort, periodic images dropped. `step` is the step count (rebalance interval).
-  // `lent`: arrays dead at this point that the reorder may use as scratch.
-  virtual void migrate(ParticleSet<D>& ps, long step, const LentScratch<D>& lent = {}) = 0;
+  virtual void migrate(ParticleSet<D>& ps, long step) = 0;
   // After the sort: appends the halo images and places them in the grid.
   virtual void build_halo(ParticleSet<D>& ps, CellGrid<D>& grid) = 0;
   // The images' position, velocity and density from their owners' current values.

@@ -18,6 +18,7 @@ class ShiftingHook final : public StepHook<D> {
  public:
   explicit ShiftingHook(const ShiftingParams& p) : p_(p) {}
   std::string name() const override { return "shifting"; }
+  bool changes_state_before_forces() const override { return false; }
 
   void after_integration(StepState<D>& s) override {
     ParticleSet<D>& ps = s.particles;

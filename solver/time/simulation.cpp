@@ -60,6 +60,15 @@ void Simulation<D>::for_each_hook(Stage&& stage) {
 }
 
 template <int D>
+template <class Test>
+bool Simulation<D>::any_hook(Test&& test) const {
+  if (test(static_cast<const StepHook<D>&>(*boundary_))) return true;
+  for (const auto& h : hooks_)
+    if (test(*h)) return true;
+  return false;
+}
+
+template <int D>
 void Simulation<D>::restore(const SimulationClock& c) {
   time_ = c.time;
   steps_ = c.steps;
@@ -167,8 +176,7 @@ void Simulation<D>::evaluate() {
     const double tm = omp_get_wtime();
     grid_.drop_ghosts(ps_);    // the last evaluation's halo
     grid_.wrap_periodic(ps_);  // a particle that crossed a periodic face goes to its new owner
-    // The rates are dead until this evaluation's forces: the reorder's scratch.
-    exchange_->migrate(ps_, steps_, lent_force_buffers());
+    exchange_->migrate(ps_, steps_);
     times_.neighbour += omp_get_wtime() - tm;
   }
   sort_particles();
@@ -182,7 +190,10 @@ void Simulation<D>::evaluate() {
   f_.resize(ps_.stored());
   StepState<D> s = state(time_);
   for_each_hook([&](StepHook<D>& h) { h.before_forces(s); });
-  refresh_images();  // walls' and re-initialised densities
+  // Walls' and re-initialised densities; the halo and the sort's periodic images hold the
+  // sources' state already where no hook changed it.
+  if (any_hook([](const StepHook<D>& h) { return h.changes_state_before_forces(); }))
+    refresh_images();
   boundary_->forces(s);
   for_each_hook([&](StepHook<D>& h) { h.after_forces(s); });
   times_.interaction += omp_get_wtime() - t0;
@@ -193,9 +204,9 @@ void Simulation<D>::redistribute() {
   if (!exchange_) return;
   grid_.drop_ghosts(ps_);
   grid_.wrap_periodic(ps_);
-  // acceleration() and density_rate() are stale after this (documented): their buffers are
-  // the reorder's scratch, as in evaluate().
-  exchange_->migrate(ps_, -1, lent_force_buffers());
+  // acceleration() and density_rate() are stale after this (documented): the particles moved
+  // and their rates did not.
+  exchange_->migrate(ps_, -1);
   // Stale but sized: a second gather before the next step reads one acceleration per particle.
   f_.resize(ps_.total());
 }
@@ -248,7 +259,9 @@ void Simulation<D>::step() {
   else
     step_symplectic();
   {
-    refresh_images();  // images at the integrated state
+    // Images at the integrated state, for the hooks that read them (dropped right after).
+    if (any_hook([](const StepHook<D>& h) { return h.reads_images_after_integration(); }))
+      refresh_images();
     StepState<D> s = state(time_ + dt_);
     for_each_hook([&](StepHook<D>& h) { h.after_integration(s); });
     grid_.drop_ghosts(ps_);  // between steps there are no periodic images

@@ -99,8 +99,8 @@ class Simulation {
   // between_steps: the sort after the integration (density exclusions), which keeps the
   // force buffers' values (reordered with the particles) instead of using them as scratch.
   void sort_particles(bool between_steps = false);
-  // The force buffers as a reorder's scratch (only where the rates are dead: the start of an
-  // evaluation, redistribute).
+  // The force buffers as a reorder's scratch (only where the rates are dead: the sort at the
+  // start of an evaluation).
   LentScratch<D> lent_force_buffers();
   // Files the particles the last sort moved out of the domain, [first, last), by face.
   void record_faces(std::size_t first, std::size_t last);
@@ -111,6 +111,10 @@ class Simulation {
   void refresh_images();
   template <class Stage>
   void for_each_hook(Stage&& stage);
+  // Whether test(hook) holds for the boundary model or some hook (the same on every rank: the
+  // hooks come from the case file).
+  template <class Test>
+  bool any_hook(Test&& test) const;
 
   SolverParams prm_;
   TaitEos eos_;

@@ -48,6 +48,13 @@ class StepHook {
   virtual void after_forces(StepState<D>&) {}
   virtual void finish_density(StepState<D>&) {}
   virtual void after_integration(StepState<D>&) {}
+  // Whether the images (periodic, and the halo of a run on several ranks) must take their
+  // sources' state again after this hook's before_forces (it changes pos, vel or rho there),
+  // and whether its after_integration reads images. The Simulation refreshes the images at those
+  // two points only where some hook says so (a collective exchange on several ranks). The
+  // defaults are the safe answers; a hook that neither changes nor reads says so.
+  virtual bool changes_state_before_forces() const { return true; }
+  virtual bool reads_images_after_integration() const { return true; }
   // Checkpoint state as named numbers (keys without the "hook.<name>." prefix).
   virtual void save(std::map<std::string, double>&) const {}
   virtual void restore(const std::map<std::string, double>&) {}
