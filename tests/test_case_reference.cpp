@@ -856,4 +856,46 @@ TEST(RunHeader, LaminarViscosityAddsTheViscousLimitAndGivenHswl) {
   EXPECT_EQ(layers.find("fewer"), std::string::npos) << layers;
 }
 
+// A wavemaker run names the two settings that were measured to damp a wave (README, Regular-wave
+// flume): a short smoothing length (coefh < 1.2) and artificial viscosity (alpha > 0.001, with
+// the kinematic viscosity it amounts to); the settings recommended there silence both.
+TEST(RunHeader, WavemakerWarnsOfSettingsThatDampTheWave) {
+  const auto text = [](const std::string& physics) {
+    return "dim: 2\ndp: 0.02\nphysics: {" + physics +
+           "}\ntime: {end: 0.001}\nbodies:\n"
+           "  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [1.2, 0.4]}}, "
+           "layers: 4, open: [ymax]}\n"
+           "  - {name: paddle, kind: boundary, shape: {box: {min: [0.02, 0], max: [0.1, 0.35]}},"
+           " walls: outside, layers: 4, motion: {type: wave, wave: regular, depth: 0.2, height: "
+           "0.02, period: 1.0}}\n"
+           "  - {name: water, kind: fluid, shape: {box: {min: [0.12, 0], max: [1.2, 0.2]}}}\n"
+           "output: {every: 0.001, vtk: false, hdf5: false}\n";
+  };
+  const std::string defaults = run_log(text("coefsound: 10"), "wave_defaults");
+  const std::string hline = header_line(defaults, "  warning: wavemaker paddle: coefh 1 < 1.2");
+  EXPECT_NE(hline.find("physics.coefh: 1.5"), std::string::npos) << defaults;
+  const std::string vline =
+      header_line(defaults, "  warning: wavemaker paddle: artificial viscosity alpha 0.01");
+  // nu = alpha h c0 / 8 in 2D: h = sqrt(2) 0.02, c0 = 10 sqrt(9.81 * 0.2).
+  const double nu = 0.01 * std::sqrt(2.0) * 0.02 * 10 * std::sqrt(9.81 * 0.2) / 8;
+  const auto at = vline.find("/ 8 = ");
+  ASSERT_NE(at, std::string::npos) << defaults;
+  EXPECT_NEAR(std::stod(vline.substr(at + 6)), nu, 1e-4 * nu) << vline;
+  EXPECT_NE(vline.find("{model: laminar, nu: 1.0e-6}"), std::string::npos) << vline;
+
+  const std::string artificial = run_log(text("coefsound: 10, coefh: 1.5"), "wave_artificial");
+  EXPECT_EQ(artificial.find("coefh 1.5 < 1.2"), std::string::npos) << artificial;
+  EXPECT_NE(artificial.find("artificial viscosity alpha 0.01 damps"), std::string::npos);
+  const std::string small =
+      run_log(text("coefsound: 10, coefh: 1.5, viscosity: {model: artificial, alpha: 0.001}"),
+              "wave_small_alpha");
+  EXPECT_EQ(small.find("artificial viscosity alpha"), std::string::npos) << small;
+  const std::string recommended =
+      run_log(text("coefsound: 10, coefh: 1.5, viscosity: {model: laminar, nu: 1.0e-6}"),
+              "wave_recommended");
+  EXPECT_NE(recommended.find("wavemaker paddle: regular wave"), std::string::npos) << recommended;
+  EXPECT_EQ(recommended.find("< 1.2"), std::string::npos) << recommended;
+  EXPECT_EQ(recommended.find("artificial viscosity"), std::string::npos) << recommended;
+}
+
 }  // namespace

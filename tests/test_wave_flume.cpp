@@ -223,33 +223,39 @@ double fitted_period(const Series& s, double w0, double t0, double t1) {
 
 // A 2D piston flume, depth 0.3 m, H = 0.04 m, T = 1 s (kd = 1.37, a2/a1 = 0.075: second-order
 // generation), dp = 0.015 m (H/dp = 2.7: coarse), coefsound 10 (half the steps of the default
-// 20; the flow's Mach number stays below 0.02), gauge 0.8 m (2.7 depths) from the paddle,
-// ramp 1 s. The end wall at 2.8 m reflects, but its echo of the wave front (at c_g = 0.93 m/s)
-// reaches the gauge after t = 4.9 s; the window is 1.9-3.9 s (after the ramp and the travel).
+// 20; the flow's Mach number stays below 0.02), the wave settings of the README's regular-wave
+// flume (coefh 1.5, 4 wall layers, water's laminar viscosity), gauge 0.9 m (0.7 L) from the
+// paddle, ramp 1 s, a damping zone over the last 1.3 m (1 L) so that the window can be five
+// periods of the steady wave, 3-8 s.
 //
-// What this can and cannot show. At this resolution the first-harmonic height is 21 % low
-// (measured here: 0.0317 m with DBC and mDBC alike; at dp = 0.01 m, H/dp = 5, it is 11 % low
-// over 2.5-3.5 s, 533 s of run time): numerical decay of an under-resolved wave, not a paddle
-// error, so the issue's 5 % target is not met by a test this short. The bounds below catch the
-// errors of the paddle itself (a transfer function off by a factor, stroke taken for
-// amplitude, a flap formula for a piston: factors 0.5-2).
+// What this can and cannot show. At this resolution the first-harmonic height is 7 % low
+// (measured here: 2 a1 = 0.0373 m): numerical decay of an
+// under-resolved wave over its first wavelength (README, Regular-wave flume: 2-3 % at H/dp 5
+// and 10 with these settings), so the issue's 5 % target is not met by a test this coarse; with
+// the default coefh 1 and artificial viscosity 0.01 it was 21 % low. The bounds below catch a
+// return to those settings' decay and the errors of the paddle itself (a transfer function off
+// by a factor, stroke taken for amplitude, a flap formula for a piston: factors 0.5-2); the
+// period is the issue's test target, 1 % (measured: 1.0045 s; 1.010 s over 3-6 s, where the
+// scan's resolution over three periods is about 1 %).
 TEST(WaveFlume, RegularWaveHeightAndPeriodAtTheFirstGauge) {
   const double H = 0.04, T = 1.0;
   std::string text = R"(dim: 2
 dp: 0.015
-physics: {coefsound: 10}
-time: {end: 3.9}
+physics: {coefsound: 10, coefh: 1.5, viscosity: {model: laminar, nu: 1.0e-6}}
+time: {end: 8.0}
 bodies:
-  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [2.8, 0.5]}}, layers: 3,
+  - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [2.8, 0.5]}}, layers: 4,
      open: [ymax]}
   - name: paddle
     kind: boundary
-    shape: {box: {min: [0.1, 0.0], max: [0.13, 0.45]}}
+    shape: {box: {min: [0.07, 0.0], max: [0.13, 0.45]}}
     walls: outside
-    layers: 2
+    layers: 4
     motion: {type: wave, wave: regular, depth: 0.3, height: 0.04, period: 1.0, order: 2,
              ramp: 1.0}
   - {name: water, kind: fluid, shape: {box: {min: [0.145, 0], max: [2.8, 0.3]}}}
+damping:
+  - {name: beach, plane: {at: [1.5, 0], direction: [1, 0]}, length: 1.3}
 gauges:
   - {name: eta1, kind: height, at: [0.9, 0.0], sampling: mean}
 output: {every: 1.0, vtk: false, gauge_every: 0.01}
@@ -259,17 +265,15 @@ output: {every: 1.0, vtk: false, gauge_every: 0.01}
   test::run_case_text(text, "wave_flume.yaml", dir, false, 1);
   const SeriesTable table = read_series_table((dir / "gauges_height.csv").string());
   const Series eta = table.series("eta1");
-  const auto [a1, a2] = harmonics(eta, 2 * kPi / T, 1.9, 3.9);
-  const double period = fitted_period(eta, 2 * kPi / T, 1.9, 3.9);
+  const auto [a1, a2] = harmonics(eta, 2 * kPi / T, 3.0, 8.0);
+  const double period = fitted_period(eta, 2 * kPi / T, 3.0, 8.0);
   std::cout << "first harmonic H = " << 2 * a1 << " m (target " << H << "), a2/a1 = " << a2 / a1
             << " (Stokes "
             << waves::stokes2_harmonic_ratio(waves::wave_number(2 * kPi / T, 0.3), 0.3, H)
             << "), T = " << period << " s\n";
-  EXPECT_GT(2 * a1 / H, 0.7);
+  EXPECT_GT(2 * a1 / H, 0.9);
   EXPECT_LT(2 * a1 / H, 1.05);
-  // The period is printed, not asserted: over two periods with a growing amplitude the scan
-  // reads 0.973 s here (2.7 % short), a window too short to resolve 1 %; the T target needs a
-  // longer run with an absorbing end (not done yet).
+  EXPECT_NEAR(period, T, 0.01 * T);
 }
 
 // A `sampling: mean` height gauge writes the interval mean of the level: compared with the mean
