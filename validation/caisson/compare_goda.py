@@ -133,7 +133,10 @@ def goda(swell, h_inc, c, csv_path):
             continue
         if row.startswith("# ") and ": " in row:
             key, value = row[2:].rsplit(": ", 1)
-            scalars[key] = float(value)
+            try:
+                scalars[key] = float(value)
+            except ValueError:  # the provenance lines (version, commit, ...) are not numbers
+                continue
         elif row[0] not in "#z":
             zz, pp = row.split(",")
             z.append(float(zz))
