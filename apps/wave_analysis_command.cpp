@@ -263,6 +263,16 @@ void run_waves_analyse(const WavesAnalyseOptions& opt, std::ostream& out) {
         << "\n";
     rep << "  incident:";
     print_parameters(rep, refl.incident, u);
+    if (!std::isnan(opt.period)) {
+      const auto rr = wv::mansard_funke_regular(
+          base.t, {base.eta[first], base.eta[first + 1], base.eta[first + 2]}, x, opt.depth,
+          1.0 / opt.period, opt.gravity);
+      rep << "  regular wave, T = " << fmt(opt.period)
+          << " s (each gauge's first harmonic by least squares, the same separation at 1/T): "
+             "a_incident = "
+          << fmt(rr.a_incident) << u << ", a_reflected = " << fmt(rr.a_reflected) << u
+          << ", Kr = " << fmt(rr.kr) << ", residual " << fmt(rr.residual) << u << "\n";
+    }
     if (!refl.skipped.empty()) {
       // As ranges of consecutive frequencies: "0.01-0.15, 3.2 Hz".
       std::vector<std::string> ranges;
@@ -332,7 +342,9 @@ WavesAnalyseCommand add_waves_analyse_command(CLI::App& waves) {
   a->add_option("--gauge", opt->gauge, "column to analyse (name, with or without its unit)");
   a->add_option("--from", opt->from, "window start [s]");
   a->add_option("--to", opt->to, "window end [s]");
-  auto* period = a->add_option("--period", opt->period, "wave period [s]: fit its harmonics");
+  auto* period = a->add_option("--period", opt->period,
+                               "wave period [s]: fit its harmonics (with --reflection: also the "
+                               "regular-wave separation at 1/T)");
   a->add_option("--harmonics", opt->harmonics, "harmonics fitted with --period (default 3)")
       ->needs(period);
   a->add_option("--crossing", opt->crossing, "zero crossing: up (default) or down")

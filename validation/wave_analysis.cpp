@@ -410,6 +410,50 @@ SpectralParameters spectral_parameters(std::span<const double> f, std::span<cons
 
 // ---- Reflection ------------------------------------------------------------------------------
 
+RegularReflection mansard_funke_regular(std::span<const double> t,
+                                        const std::array<std::span<const double>, 3>& eta,
+                                        const std::array<double, 3>& x, double depth,
+                                        double frequency, double g, Window w,
+                                        double min_conditioning) {
+  if (!(std::isfinite(x[0]) && std::isfinite(x[2]) && x[0] < x[1] && x[1] < x[2]))
+    throw std::invalid_argument(
+        "reflection analysis: gauge positions must increase, x1 < x2 < x3 (got " + num(x[0]) +
+        ", " + num(x[1]) + ", " + num(x[2]) + ")");
+  if (!(depth > 0.0) || !std::isfinite(depth))
+    throw std::invalid_argument("reflection analysis: the depth must be > 0, got " + num(depth));
+  if (!(g > 0.0)) throw std::invalid_argument("reflection analysis: g must be > 0");
+  if (!(frequency > 0.0) || !std::isfinite(frequency))
+    throw std::invalid_argument("reflection analysis: the frequency must be > 0, got " +
+                                num(frequency));
+  using C = std::complex<double>;
+  RegularReflection res;
+  res.frequency = frequency;
+  res.k = wave_number(2.0 * kPi * frequency, depth, g);
+  Eigen::Matrix<C, 3, 2> m;
+  Eigen::Matrix<C, 3, 1> b;
+  C s = 0.0;
+  for (int p = 0; p < 3; ++p) {
+    const HarmonicFit fit = fit_harmonics(t, eta[p], frequency, 1, w);
+    const Harmonic& h = fit.harmonics.front();
+    b(p) = C(h.cos_coef, -h.sin_coef);  // A cos(w t) + B sin(w t) = Re[(A - i B) e^{i w t}]
+    res.amplitude[p] = h.amplitude;
+    m(p, 0) = std::polar(1.0, -res.k * x[p]);  // incident, towards +x
+    m(p, 1) = std::polar(1.0, res.k * x[p]);   // reflected, towards -x
+    s += m(p, 1) * m(p, 1);
+  }
+  if (1.0 - std::abs(s) / 3.0 < min_conditioning)
+    throw std::invalid_argument(
+        "reflection analysis: at f = " + num(frequency) +
+        " Hz every gauge spacing is near a multiple of L/2 (L = " + num(2.0 * kPi / res.k) +
+        " m): the gauges cannot separate the two waves");
+  const Eigen::Matrix<C, 2, 1> z = m.colPivHouseholderQr().solve(b);
+  res.a_incident = std::abs(z(0));
+  res.a_reflected = std::abs(z(1));
+  res.kr = res.a_incident > 0.0 ? res.a_reflected / res.a_incident : 0.0;
+  res.residual = (m * z - b).cwiseAbs().maxCoeff();
+  return res;
+}
+
 ReflectionResult mansard_funke(std::span<const double> t,
                                const std::array<std::span<const double>, 3>& eta,
                                const std::array<double, 3>& x, double depth,

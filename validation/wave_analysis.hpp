@@ -217,6 +217,28 @@ ReflectionResult mansard_funke(std::span<const double> t,
                                const std::array<double, 3>& x, double depth,
                                const ReflectionOptions& opt = {}, Window w = {});
 
+// The same three-gauge least squares at one frequency, for a regular wave of period T: each
+// record's first harmonic at f = 1/T is fitted over the window (fit_harmonics), B_p = A_p - i
+// B_p from its cos and sin coefficients, and Z_I, Z_R solve the 2 x 2 system above at that f.
+// A spectral estimate (mansard_funke) spreads a regular wave's energy over the bins of a short
+// segment; this one does not (its noise is only what the harmonic fit leaves). Throws
+// std::invalid_argument where the gauge spacings cannot separate the two waves at f (the
+// conditioning test of ReflectionOptions::min_conditioning).
+struct RegularReflection {
+  double frequency = 0.0;             // [Hz]
+  double k = 0.0;                     // linear wave number [rad/m]
+  double a_incident = 0.0;            // |Z_I| [m]
+  double a_reflected = 0.0;           // |Z_R| [m]
+  double kr = 0.0;                    // a_reflected / a_incident
+  double residual = 0.0;              // max_p |B_p - model_p| [m]: what the two waves leave
+  std::array<double, 3> amplitude{};  // each gauge's fitted first-harmonic amplitude [m]
+};
+RegularReflection mansard_funke_regular(std::span<const double> t,
+                                        const std::array<std::span<const double>, 3>& eta,
+                                        const std::array<double, 3>& x, double depth,
+                                        double frequency, double g = kStandardGravity,
+                                        Window w = {}, double min_conditioning = 0.1);
+
 // ---- Gauge files ----------------------------------------------------------------------------
 
 struct GaugeColumn {
