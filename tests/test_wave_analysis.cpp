@@ -712,6 +712,19 @@ TEST(WavesAnalyseCommand, BadInputExitsTwo) {
   EXPECT_EQ(segment.code, 2) << segment.output;
   EXPECT_NE(segment.output.find("longer than the record"), std::string::npos) << segment.output;
   EXPECT_EQ(segment.output.find("zero crossing"), std::string::npos) << segment.output;
+  // The regular-wave separation at 1/T with gauges half a wave length apart (T 1 s in 0.5 m:
+  // L = 1.50 m): refused, naming why, with no partial report.
+  const double half = 0.5 * wave_length(1.0, 0.5);
+  char positions[128];
+  std::snprintf(positions, sizeof positions, "0,%.9g,%.9g", half, 2.0 * half);
+  const fs::path three = dir / "three.csv";
+  write_gauge_csv(three, {"A", "B", "C"}, r.t, {r.eta, r.eta, r.eta});
+  const CommandResult spacing =
+      swell_command("waves analyse " + three.string() + " --reflection A,B,C --positions " +
+                    positions + " --depth 0.5 --period 1 --segment 5");
+  EXPECT_EQ(spacing.code, 2) << spacing.output;
+  EXPECT_NE(spacing.output.find("cannot separate"), std::string::npos) << spacing.output;
+  EXPECT_EQ(spacing.output.find("Kr = "), std::string::npos) << spacing.output;
 }
 
 }  // namespace

@@ -410,11 +410,10 @@ SpectralParameters spectral_parameters(std::span<const double> f, std::span<cons
 
 // ---- Reflection ------------------------------------------------------------------------------
 
-RegularReflection mansard_funke_regular(std::span<const double> t,
-                                        const std::array<std::span<const double>, 3>& eta,
-                                        const std::array<double, 3>& x, double depth,
-                                        double frequency, double g, Window w,
-                                        double min_conditioning) {
+namespace {
+
+// The three-gauge separation's inputs: increasing finite positions, depth and g > 0.
+void check_reflection_setup(const std::array<double, 3>& x, double depth, double g) {
   if (!(std::isfinite(x[0]) && std::isfinite(x[2]) && x[0] < x[1] && x[1] < x[2]))
     throw std::invalid_argument(
         "reflection analysis: gauge positions must increase, x1 < x2 < x3 (got " + num(x[0]) +
@@ -422,6 +421,16 @@ RegularReflection mansard_funke_regular(std::span<const double> t,
   if (!(depth > 0.0) || !std::isfinite(depth))
     throw std::invalid_argument("reflection analysis: the depth must be > 0, got " + num(depth));
   if (!(g > 0.0)) throw std::invalid_argument("reflection analysis: g must be > 0");
+}
+
+}  // namespace
+
+RegularReflection mansard_funke_regular(std::span<const double> t,
+                                        const std::array<std::span<const double>, 3>& eta,
+                                        const std::array<double, 3>& x, double depth,
+                                        double frequency, double g, Window w,
+                                        double min_conditioning) {
+  check_reflection_setup(x, depth, g);
   if (!(frequency > 0.0) || !std::isfinite(frequency))
     throw std::invalid_argument("reflection analysis: the frequency must be > 0, got " +
                                 num(frequency));
@@ -459,14 +468,7 @@ ReflectionResult mansard_funke(std::span<const double> t,
                                const std::array<double, 3>& x, double depth,
                                const ReflectionOptions& opt, Window w) {
   for (int p = 0; p < 3; ++p) check_series(t, eta[p], "reflection analysis");
-  if (!(std::isfinite(x[0]) && std::isfinite(x[2]) && x[0] < x[1] && x[1] < x[2]))
-    throw std::invalid_argument(
-        "reflection analysis: gauge positions must increase, x1 < x2 < x3 "
-        "(got " +
-        num(x[0]) + ", " + num(x[1]) + ", " + num(x[2]) + ")");
-  if (!(depth > 0.0) || !std::isfinite(depth))
-    throw std::invalid_argument("reflection analysis: the depth must be > 0, got " + num(depth));
-  if (!(opt.g > 0.0)) throw std::invalid_argument("reflection analysis: g must be > 0");
+  check_reflection_setup(x, depth, opt.g);
   const Range r = window_range(t, w, 8, "reflection analysis");
   const auto tw = t.subspan(r.begin, r.size());
   check_uniform_from(tw, r.begin);
