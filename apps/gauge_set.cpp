@@ -30,8 +30,9 @@ const char* kind_comment(GaugeSpec::Kind k) {
       return "surge front: largest x of fluid within the band above the floor, plus dp/2 [m]";
     case GaugeSpec::Kind::Runup:
       return "runup: elevation of the highest point of the slope line where the fluid kernel "
-             "sum dp/2 off the surface reaches 0.3 rho0, above swl where the gauge gives one, "
-             "else absolute [m]; sampling: max, the largest value since the previous row";
+             "sum dp/2 off the surface (h = sqrt(dim) dp) reaches 0.3 rho0, above swl where the "
+             "gauge gives one, else absolute [m]; sampling: max, the largest value since the "
+             "previous row";
   }
   return "";
 }
@@ -50,11 +51,15 @@ double height_level(const GaugeSpec& g, const GaugeContext& ctx, const ParticleS
   });
 }
 
-// A runup gauge's value (no allocation once the candidate buffer has grown).
+// A runup gauge's value (no allocation once the candidate buffer has grown). The wet criterion
+// is a measurement, not the solver's smoothing: it sums with the case's kernel at h = sqrt(D) dp
+// (coefh 1), the h its 0.3 rho0 threshold is set for, whatever the run's coefh. Summed at coefh
+// 1.5 (h = 2.12 dp) a one-row film reads 0.35 rho0 and its edge 1.2 dp short (test_gauges).
 template <int D>
 double runup_level(const GaugeSpec& g, const GaugeContext& ctx, const ParticleSet<D>& ps) {
   const SolverParams& p = ctx.params;
-  const double z = with_kernel<D>(p.kernel, p.h, [&](const auto& kernel) {
+  const double h_gauge = std::sqrt(static_cast<double>(D)) * p.dp;
+  const double z = with_kernel<D>(p.kernel, h_gauge, [&](const auto& kernel) {
     return runup_elevation(ps, kernel, Vec<D>(g.from.template head<D>()),
                            Vec<D>(g.to.template head<D>()), ctx.up_axis, 0.5 * p.dp, p.dp, p.rho0);
   });

@@ -292,6 +292,35 @@ TEST(RunupGauge, LayerOnASlopeIn3D) {
   EXPECT_NEAR(z / std::sin(beta), s_end, 0.25 * dp);
 }
 
+// The run's gauge reads with h = sqrt(2) dp whatever the case's coefh: a one-row film on a
+// 1:19.85 slope at coefh 1.5 (h = 2.12 dp) ends at its edge (within 0.25 dp). Summed at the
+// run's h the film reads 0.35 rho0 inside and the 0.3 rho0 crossing falls 1.2 dp short of the
+// edge (measured here).
+TEST(RunupGauge, RunGaugeReadsAFilmAtAnyCoefh) {
+  const double dp = 0.01, rho = 1000.0, beta = std::atan(1.0 / 19.85), s_end = 0.4;
+  const Vec<2> t(std::cos(beta), std::sin(beta));
+  GaugeSpec g;
+  g.name = "R";
+  g.kind = GaugeSpec::Kind::Runup;
+  g.from = Eigen::Vector3d(-0.05 * t.x(), -0.05 * t.y(), 0.0);
+  g.to = Eigen::Vector3d(t.x(), t.y(), 0.0);
+  const ParticleSet<2> film = slope_layer(beta, 1, s_end, dp, rho);
+  for (const double coefh : {1.0, 1.5}) {
+    GaugeContext ctx;
+    ctx.params.dp = dp;
+    ctx.params.h = coefh * std::sqrt(2.0) * dp;
+    ctx.params.rho0 = rho;
+    const double z = evaluate_gauge<2>(g, ctx, film, {}, {}).at(0);
+    EXPECT_NEAR(z / std::sin(beta), s_end, 0.25 * dp) << "coefh " << coefh;
+  }
+  // The criterion at the run's h: the edge read short.
+  const double z15 = runup_elevation(film, WendlandC2<2>(1.5 * std::sqrt(2.0) * dp),
+                                     Vec<2>(-0.05 * t), Vec<2>(t), 1, 0.5 * dp, dp, rho);
+  std::cout << "one-row film at h = 2.12 dp read at that h: " << (z15 / std::sin(beta) - s_end) / dp
+            << " dp from its edge\n";
+  EXPECT_LT(z15 / std::sin(beta), s_end - 0.75 * dp);
+}
+
 // `sampling: max`: the row holds the largest runup since the previous row (here reached in
 // the middle of the interval), not the last one; `instant` the row's value; the peak survives a
 // checkpoint.

@@ -224,24 +224,29 @@ double fitted_period(const Series& s, double w0, double t0, double t1) {
 // A 2D piston flume, depth 0.3 m, H = 0.04 m, T = 1 s (kd = 1.37, a2/a1 = 0.075: second-order
 // generation), dp = 0.015 m (H/dp = 2.7: coarse), coefsound 10 (half the steps of the default
 // 20; the flow's Mach number stays below 0.02), the wave settings of the README's regular-wave
-// flume (coefh 1.5, 4 wall layers, water's laminar viscosity), gauge 0.9 m (0.7 L) from the
-// paddle, ramp 1 s, a damping zone over the last 1.3 m (1 L) so that the window can be five
-// periods of the steady wave, 3-8 s.
+// flume (coefh 1.5, 4 wall layers, water's laminar viscosity), mDBC walls, ramp 1 s, a damping
+// zone over the last 1.3 m (1 L) so that the window can be five periods of the steady wave,
+// 3-8 s. The first gauge stands 0.45 m (1.5 d, 0.33 L) from the paddle, past its evanescent
+// modes (the first decays as exp(-9.4 x / m): 1.5 % there); a second one at 0.9 m (0.66 L).
 //
-// What this can and cannot show. At this resolution the first-harmonic height is 7 % low
-// (measured here: 2 a1 = 0.0373 m): numerical decay of an
-// under-resolved wave over its first wavelength (README, Regular-wave flume: 2-3 % at H/dp 5
-// and 10 with these settings), so the issue's 5 % target is not met by a test this coarse; with
-// the default coefh 1 and artificial viscosity 0.01 it was 21 % low. The bounds below catch a
-// return to those settings' decay and the errors of the paddle itself (a transfer function off
-// by a factor, stroke taken for amplitude, a flap formula for a piston: factors 0.5-2); the
-// period is the issue's test target, 1 % (measured: 1.0045 s; 1.010 s over 3-6 s, where the
-// scan's resolution over three periods is about 1 %).
+// Measured here (first-harmonic height 2 a1 at 0.45 / 0.9 m, 1 thread each):
+//   mDBC dp 0.015 (this test)  -1.1 / -5.2 %      DBC dp 0.015  -4.0 / -6.9 %
+//   mDBC dp 0.01               -2.3 / -4.5 %      DBC dp 0.01   -4.8 / -5.7 %
+// DBC loses 4-5 % at the paddle whatever the dp here: the gap between the plate and the fluid
+// breathes under the paddle's pressure by a fraction of dp, which is half the stroke (0.031 m)
+// at dp 0.015 (README, Regular-wave flume: -2.4 % at 0.25 L with H/dp 5, stroke 7 dp). The
+// further loss to 0.66 L is numerical decay of a wave this coarse (2-3 % per wavelength at H/dp
+// 5-10 with these settings). So the issue's test target, H within 5 %, is asserted at the first
+// gauge; the second gets 10 %, which catches a return to coefh 1 with artificial viscosity 0.01
+// (21 % low there) and the paddle's own errors (a transfer function off by a factor, stroke
+// taken for amplitude, a flap formula for a piston: factors 0.5-2). The period is the issue's
+// target, 1 %, at both gauges (measured 0.9930 / 1.0055 s; with DBC 0.9965 / 1.0045 s: the
+// scan's estimate over five periods scatters by about 0.7 % around the paddle's period).
 TEST(WaveFlume, RegularWaveHeightAndPeriodAtTheFirstGauge) {
   const double H = 0.04, T = 1.0;
   std::string text = R"(dim: 2
 dp: 0.015
-physics: {coefsound: 10, coefh: 1.5, viscosity: {model: laminar, nu: 1.0e-6}}
+physics: {coefsound: 10, coefh: 1.5, viscosity: {model: laminar, nu: 1.0e-6}, boundary: {model: mdbc}}
 time: {end: 8.0}
 bodies:
   - {name: tank, kind: boundary, shape: {box: {min: [0, 0], max: [2.8, 0.5]}}, layers: 4,
@@ -257,23 +262,28 @@ bodies:
 damping:
   - {name: beach, plane: {at: [1.5, 0], direction: [1, 0]}, length: 1.3}
 gauges:
-  - {name: eta1, kind: height, at: [0.9, 0.0], sampling: mean}
+  - {name: eta1, kind: height, at: [0.45, 0.0], sampling: mean}
+  - {name: eta2, kind: height, at: [0.9, 0.0], sampling: mean}
 output: {every: 1.0, vtk: false, gauge_every: 0.01}
 )";
   const fs::path dir = fs::path(SWELL_BINARY_DIR) / "test_out" / "wave_flume_regular";
   fs::remove_all(dir);
-  test::run_case_text(text, "wave_flume.yaml", dir, false, 1);
+  test::run_case_text(text, "wave_flume.yaml", dir, false, 2);
   const SeriesTable table = read_series_table((dir / "gauges_height.csv").string());
-  const Series eta = table.series("eta1");
-  const auto [a1, a2] = harmonics(eta, 2 * kPi / T, 3.0, 8.0);
-  const double period = fitted_period(eta, 2 * kPi / T, 3.0, 8.0);
-  std::cout << "first harmonic H = " << 2 * a1 << " m (target " << H << "), a2/a1 = " << a2 / a1
-            << " (Stokes "
+  const Series eta1 = table.series("eta1"), eta2 = table.series("eta2");
+  const auto [a1, a2] = harmonics(eta1, 2 * kPi / T, 3.0, 8.0);
+  const double far = harmonics(eta2, 2 * kPi / T, 3.0, 8.0).first;
+  const double period = fitted_period(eta1, 2 * kPi / T, 3.0, 8.0);
+  const double period_far = fitted_period(eta2, 2 * kPi / T, 3.0, 8.0);
+  std::cout << "first harmonic H = " << 2 * a1 << " m at 0.45 m, " << 2 * far
+            << " m at 0.9 m (target " << H << "), a2/a1 = " << a2 / a1 << " (Stokes "
             << waves::stokes2_harmonic_ratio(waves::wave_number(2 * kPi / T, 0.3), 0.3, H)
-            << "), T = " << period << " s\n";
-  EXPECT_GT(2 * a1 / H, 0.9);
-  EXPECT_LT(2 * a1 / H, 1.05);
+            << "), T = " << period << " / " << period_far << " s\n";
+  EXPECT_NEAR(2 * a1 / H, 1.0, 0.05);
+  EXPECT_GT(2 * far / H, 0.9);
+  EXPECT_LT(2 * far / H, 1.05);
   EXPECT_NEAR(period, T, 0.01 * T);
+  EXPECT_NEAR(period_far, T, 0.01 * T);
 }
 
 // A `sampling: mean` height gauge writes the interval mean of the level: compared with the mean

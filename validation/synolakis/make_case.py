@@ -24,14 +24,14 @@ COT_BETA = 19.85
 G = 9.81
 
 
-def geometry(hd, d, dp):
+def geometry(hd, d, dp, paddle_cols=2):
     H = hd * d
     k = math.sqrt(3.0 * H / (4.0 * d**3))
     L = 2.0 / k * math.acosh(math.sqrt(20.0))
     c = math.sqrt(G * (d + H))
     stroke = 2.0 * H / (k * d)                      # Goring (1978) paddle stroke
     duration = 2.0 * (3.8 + hd) / (k * c)           # Goring's motion duration
-    paddle = (0.1, 0.1 + 2 * dp)                    # plate at rest, 2 dp thick
+    paddle = (0.1, 0.1 + paddle_cols * dp)          # plate at rest, one column per wall layer
     x_crest0 = paddle[1] + 0.5 * stroke             # crest leaves the paddle about here
     x_toe = x_crest0 + 0.5 * L
     r_law = 2.831 * math.sqrt(COT_BETA) * hd**1.25 * d
@@ -42,13 +42,22 @@ def geometry(hd, d, dp):
                 x_top=x_top, t_end=t_end, r_law=r_law)
 
 
-def case_text(hd, d, dp, coefsound, name=None):
-    g = geometry(hd, d, dp)
+def case_text(hd, d, dp, coefsound, name=None, coefh=1.0, viscosity="artificial"):
+    # Wall layers (and paddle columns) for the full support 2h: ceil(2 coefh sqrt(2) - 1/2), 3 at
+    # coefh 1 and 4 at 1.5 (until 2026-12-06 the paddle and beach had 2 at coefh 1, which `swell
+    # run` warns of: see the README, Solitary-wave runup); viscosity: artificial alpha 0.01 or
+    # water's laminar nu 1e-6.
+    layers = math.ceil(2.0 * coefh * math.sqrt(2.0) - 0.5)
+    g = geometry(hd, d, dp, layers)
+    coefh = f"{coefh:.1f}" if coefh == round(coefh, 1) else f"{coefh:g}"
+    visc = "{model: laminar, nu: 1.0e-6}" if viscosity == "laminar" else "{model: artificial, alpha: 0.01}"
+    flags = (f" --coefh {coefh}" if coefh != "1.0" else "") + (
+        f" --viscosity {viscosity}" if viscosity != "artificial" else "")
     f = lambda v: f"{v:.6g}"
     x_end = g["x_top"] + 3 * dp
     ytop = g["top"] + 0.1 * d
     return f"""# Synolakis (1987) solitary-wave runup on a 1:19.85 beach, H/d = {hd:g} (written by
-# validation/synolakis/make_case.py --hd {hd:g} --d {d:g} --dp {dp:g}).
+# validation/synolakis/make_case.py --hd {hd:g} --d {d:g} --dp {dp:g}{flags}).
 # d = {f(d)} m, H = {f(g['H'])} m (H/dp = {g['H']/dp:.2f}), L = {f(g['L'])} m, toe at x = {f(g['x_toe'])} m,
 # law R = 2.831 sqrt(cot beta) (H/d)^(5/4) d = {f(g['r_law'])} m.
 name: {name or f"synolakis_h{round(hd * 1000):03d}"}
@@ -58,8 +67,8 @@ physics:
   rho0: 1000
   gravity: [0, -9.81]
   coefsound: {f(coefsound)}
-  coefh: 1.0
-  viscosity: {{model: artificial, alpha: 0.01}}
+  coefh: {coefh}
+  viscosity: {visc}
   density_diffusion: {{model: fourtakas, delta: 0.1}}
 time: {{end: {f(g['t_end'])}, cfl: 0.2}}
 bodies:
@@ -67,19 +76,19 @@ bodies:
     kind: boundary
     shape: {{box: {{min: [0, 0], max: [{f(x_end)}, {f(ytop)}]}}}}
     walls: inside
-    layers: 3
+    layers: {layers}
     open: [ymax]
   - name: paddle                       # piston, Goring (1978) solitary-wave trajectory
     kind: boundary
     shape: {{box: {{min: [{f(g['paddle'][0])}, 0], max: [{f(g['paddle'][1])}, {f(ytop)}]}}}}
     walls: outside
-    layers: 2
+    layers: {layers}
     motion: {{type: wave, wave: solitary, depth: {f(d)}, height: {f(g['H'])}}}
   - name: beach                        # 1:19.85 from the toe to the top
     kind: boundary
     shape: {{polygon: {{points: [[{f(g['x_toe'])}, 0], [{f(g['x_top'])}, {f(g['top'])}], [{f(x_end)}, {f(g['top'])}], [{f(x_end)}, 0]]}}}}
     walls: outside
-    layers: 2
+    layers: {layers}
   - name: water
     kind: fluid
     shape: {{box: {{min: [{f(g['paddle'][1] + 0.5 * dp)}, 0], max: [{f(x_end)}, {f(d)}]}}}}
@@ -97,6 +106,8 @@ def main():
     ap.add_argument("--d", type=float, default=0.3, help="depth d [m] (default 0.3)")
     ap.add_argument("--dp", type=float, default=0.015, help="particle spacing [m] (default 0.015)")
     ap.add_argument("--coefsound", type=float, default=10.0, help="physics.coefsound (default 10: half the steps of 20; the flow stays below Mach 0.2)")
+    ap.add_argument("--coefh", type=float, default=1.0, help="physics.coefh (default 1); walls and paddle get the layers of the full support (3 at coefh 1, 4 at 1.5)")
+    ap.add_argument("--viscosity", choices=["artificial", "laminar"], default="artificial", help="artificial alpha 0.01 (default) or water's laminar nu 1e-6")
     ap.add_argument("--name", help="case name (default synolakis_hNNN, NNN = 1000 H/d)")
     ap.add_argument("-o", "--out", help="case file to write (default runs/synolakis_hNNN.yaml)")
     ap.add_argument("--run", action="store_true", help="run it: swell run -t 1")
@@ -105,7 +116,7 @@ def main():
     path = a.out or f"runs/synolakis_h{round(a.hd * 1000):03d}.yaml"
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     with open(path, "w") as fh:
-        fh.write(case_text(a.hd, a.d, a.dp, a.coefsound, a.name))
+        fh.write(case_text(a.hd, a.d, a.dp, a.coefsound, a.name, a.coefh, a.viscosity))
     print(path)
     if a.run:
         out = os.path.splitext(path)[0]

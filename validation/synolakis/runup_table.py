@@ -43,13 +43,19 @@ def read_lab(path):
 
 
 def read_run(folder):
-    case = glob.glob(os.path.join(folder, "*.yaml")) + glob.glob(folder + ".yaml")
+    # The case beside the folder or in it; a run folder also holds run_info.yaml (no header).
+    case = glob.glob(folder.rstrip("/") + ".yaml") + sorted(glob.glob(os.path.join(folder, "*.yaml")))
     meta = {}
-    for path in case[:1]:
+    for path in case:
         text = open(path).read()
         m = re.search(r"--hd ([0-9.eE+-]+) --d ([0-9.eE+-]+) --dp ([0-9.eE+-]*[0-9])", text)
         if m:
             meta = dict(hd=float(m.group(1)), d=float(m.group(2)), dp=float(m.group(3)))
+            c = re.search(r"^\s*coefh:\s*([0-9.eE+-]+)", text, re.M)
+            v = re.search(r"^\s*viscosity:\s*\{\s*model:\s*(\w+)", text, re.M)
+            meta["settings"] = "coefh %g, %s" % (float(c.group(1)) if c else 1.0,
+                                                 v.group(1) if v else "artificial")
+            break
     if not meta:
         raise SystemExit(f"{folder}: no case written by make_case.py next to it ({folder}.yaml)")
     t, r = [], []
@@ -75,8 +81,9 @@ def read_table(path):
         reader = csv.DictReader(l for l in fh if not l.startswith("#"))
         rows = []
         for r in reader:
-            rows.append({k: (float(v) if k not in ("breaking_in_lab", "wall_s") else v)
+            rows.append({k: (float(v) if k not in ("breaking_in_lab", "wall_s", "settings") else v)
                          for k, v in r.items()})
+            rows[-1].setdefault("settings", "")
     need = {"H_over_d", "dp_m", "R_over_d", "R_corr_over_d"}
     if not rows or not need <= set(rows[0]):
         sys.stderr.write(f"{path}: expected a runup_table.csv with rows and the columns "
@@ -98,14 +105,17 @@ def plot(rows, lab_h, lab_r, png):
               label="runup law 2.831 sqrt(cot beta) (H/d)^1.25")
     ax.axvline(0.045, color="0.6", lw=0.8, ls=":")
     ax.text(0.047, 0.012, "breaking (lab)", color="0.4", fontsize=8)
-    for dp in sorted({r["dp_m"] for r in rows}):
-        sel = [r for r in rows if r["dp_m"] == dp]
+    colours = ["#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9"]
+    groups = sorted({(r["dp_m"], r.get("settings", "")) for r in rows})
+    for i, (dp, settings) in enumerate(groups):
+        sel = [r for r in rows if r["dp_m"] == dp and r.get("settings", "") == settings]
         hs = [r["H_over_d"] for r in sel]
-        name = "Swell SPH dp " + length_text(dp)
-        ax.loglog(hs, [r["R_over_d"] for r in sel], ls="none", marker="s", ms=7, color="#D55E00",
+        name = "Swell SPH dp " + length_text(dp) + (f" ({settings})" if settings else "")
+        colour = colours[i % len(colours)]
+        ax.loglog(hs, [r["R_over_d"] for r in sel], ls="none", marker="s", ms=7, color=colour,
                   label=name + ", R max")
         ax.loglog(hs, [r["R_corr_over_d"] for r in sel], ls="none", marker="^", ms=7,
-                  mfc="white", mew=1.3, color="#0072B2", label=name + ", R max - R at rest")
+                  mfc="white", mew=1.3, color=colour, label=name + ", R max - R at rest")
     negative = [r for r in rows if r["R_over_d"] <= 0]
     if negative:  # a log axis cannot show them: say so on the plot
         ax.text(0.02, 0.97, "R max <= 0, not on the log axis:\n" + "\n".join(
@@ -151,7 +161,7 @@ def main():
             law_R_over_d=law(hd), lab_mean_R_over_d=lab_mean, lab_points=len(near),
             err_vs_lab=(run["r_max"] / d) / lab_mean - 1.0,
             err_corr_vs_lab=((run["r_max"] - run["r_rest"]) / d) / lab_mean - 1.0,
-            breaking_in_lab=hd > 0.045, wall_s=run["wall"]))
+            breaking_in_lab=hd > 0.045, wall_s=run["wall"], settings=run["settings"]))
     path = os.path.join(a.out, "runup_table.csv")
     with open(path, "w", newline="") as fh:
         fh.write("# max runup of swell runs (make_case.py; R above swl, gauge sampling: max); "
