@@ -270,8 +270,9 @@ TEST(Plots, BenchAndRunupScriptsWriteSvgWithUnitsAndLabels) {
       "' --lab '" + lab.string() + "' --replot '" + (d / "runup_table.csv").string() + "'";
   ASSERT_EQ(std::system(runup.c_str()), 0) << runup;
   const std::string svg = slurp(d / "runup.svg");
-  for (const char* text : {"Swell SPH dp 15 mm, R max", "experiment (Synolakis 1987, lab points)",
-                           "H/d, wave height / depth [-]", "R/d, maximum runup / depth [-]"})
+  for (const char* text :
+       {"Swell SPH dp 6 mm (coefh 1, laminar), R max", "experiment (Synolakis 1987, lab points)",
+        "H/d, wave height / depth [-]", "R/d, maximum runup / depth [-]"})
     EXPECT_NE(svg.find(text), std::string::npos) << text;
   // Bad input: exit 2 with the reason.
   const std::string bad = runup.substr(0, runup.find(" --replot")) + " --replot '" +
