@@ -227,12 +227,13 @@ double fitted_period(const Series& s, double w0, double t0, double t1) {
 // flume (coefh 1.5, 4 wall layers, water's laminar viscosity), mDBC walls, ramp 1 s, a damping
 // zone over the last 1.3 m (1 L) so that the window can be five periods of the steady wave,
 // 3-8 s. The first gauge stands 0.45 m (1.5 d, 0.33 L) from the paddle, past its evanescent
-// modes (the first decays as exp(-9.4 x / m): 1.5 % there); a second one at 0.9 m (0.66 L).
+// modes (the first, k1 = 9.08 rad/m from w^2 = -g k1 tan k1 d, decays to 1.7 % there); a second
+// one at 0.9 m (0.66 L).
 //
 // Measured here (first-harmonic height 2 a1 at 0.45 / 0.9 m, 1 thread each):
 //   mDBC dp 0.015 (this test)  -1.1 / -5.2 %      DBC dp 0.015  -4.0 / -6.9 %
 //   mDBC dp 0.01               -2.3 / -4.5 %      DBC dp 0.01   -4.8 / -5.7 %
-// DBC loses 4-5 % at the paddle whatever the dp here: the gap between the plate and the fluid
+// DBC is 4-5 % low by the first gauge whatever the dp here: the gap between the plate and the fluid
 // breathes under the paddle's pressure by a fraction of dp, which is half the stroke (0.031 m)
 // at dp 0.015 (README, Regular-wave flume: -2.4 % at 0.25 L with H/dp 5, stroke 7 dp). The
 // further loss to 0.66 L is numerical decay of a wave this coarse (2-3 % per wavelength at H/dp

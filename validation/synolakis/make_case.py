@@ -113,6 +113,9 @@ def main():
     ap.add_argument("--run", action="store_true", help="run it: swell run -t 1")
     ap.add_argument("--swell", default="build/swell")
     a = ap.parse_args()
+    for key in ("hd", "d", "dp", "coefsound", "coefh"):
+        if not getattr(a, key) > 0:
+            ap.error(f"--{key}: expected a number > 0, got {getattr(a, key)}")
     path = a.out or f"runs/synolakis_h{round(a.hd * 1000):03d}.yaml"
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     with open(path, "w") as fh:
