@@ -710,7 +710,8 @@ RunSummary run_dim(const CaseSpec& spec, const RunOptions& opt, RunLog& log, Run
     const auto& pr = setup.params;
     log << "  walls: " << boundary_name(pr.boundary);
     if (pr.boundary == BoundaryType::Mdbc) {
-      log << " (slip " << mdbc_slip_name(pr.mdbc_slip) << ", det_min " << pr.mdbc_det_min << ")";
+      log << " (slip " << mdbc_slip_name(pr.mdbc_slip) << ", pressure "
+          << mdbc_pressure_name(pr.mdbc_pressure) << ", det_min " << pr.mdbc_det_min << ")";
       std::string dbc;  // bodies[].boundary: dbc inside an mDBC run
       for (std::size_t b = 0; b < setup.dbc_bodies.size(); ++b)
         if (setup.dbc_bodies[b]) dbc += (dbc.empty() ? "" : ", ") + setup.bodies[b].name;

@@ -20,6 +20,17 @@ void MdbcBoundary<D>::before_forces(StepState<D>& s) {
   if (slip && body_vel_.size() < ps.total()) body_vel_.resize(ps.total());  // once
   const double rho0 = s.params.rho0;
   const CellGrid<D>& grid = s.grid;
+  const bool hydrostatic = pressure_ == MdbcPressure::Hydrostatic;
+  const Vec<D> gravity = s.params.gravity.template head<D>();
+  const bool accelerating = !ps.wall_acc.empty();
+  const TaitEos& eos = s.eos;
+  // rho_a = p^-1(p(rho_g) + rho0 (g - a_a) . (x_a - x_g)), x_a - x_g = -2 n_a (at least rho0)
+  const auto cloned = [&](long i, double rho_g) {
+    Vec<D> f = gravity;
+    if (accelerating && ps.role[i] == Role::MovingWall) f -= ps.wall_acc[i];
+    const double p = eos.pressure(rho_g) - 2.0 * rho0 * f.dot(ps.normal[i]);
+    return p > 0.0 ? eos.density(p) : rho0;
+  };
   std::size_t corrected = 0, shepard = 0, dry = 0;
   with_kernel<D>(s.params.kernel, s.params.h, [&](const auto& kernel) {
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : corrected, shepard, dry)
@@ -36,13 +47,15 @@ void MdbcBoundary<D>::before_forces(StepState<D>& s) {
           ++dry;
           continue;  // the wall shows its body's velocity
         case GhostMode::Shepard:
-          ps.rho[i] = static_cast<StateReal>(std::max(rho0, g.rho));
+          ps.rho[i] =
+              static_cast<StateReal>(hydrostatic ? cloned(i, g.rho) : std::max(rho0, g.rho));
           ++shepard;
           break;
         case GhostMode::Corrected:
-          // rho_a = rho_g + (x_a - x_g) . grad rho_g, x_a - x_g = -2 n_a
-          ps.rho[i] =
-              static_cast<StateReal>(std::max(rho0, g.rho - 2.0 * ps.normal[i].dot(g.grad)));
+          // linear: rho_a = rho_g + (x_a - x_g) . grad rho_g, x_a - x_g = -2 n_a
+          ps.rho[i] = static_cast<StateReal>(
+              hydrostatic ? cloned(i, g.rho)
+                          : std::max(rho0, g.rho - 2.0 * ps.normal[i].dot(g.grad)));
           ++corrected;
           break;
       }

@@ -12,8 +12,18 @@
 //     the ghost's support, e.g. near the free surface) the Shepard average
 //     sum m_b W / sum V_b W, without gradient;
 //   - no fluid in the ghost's support: rho0;
-//   - the wall particle's density is the extrapolation rho_g + (x_a - x_g) . grad rho_g, never
-//     below rho0 (as DBC's floor: a wall never pulls fluid in).
+//   - the wall particle's density (MdbcPressure), never below rho0 (as DBC's floor: a wall never
+//     pulls fluid in):
+//       linear (default): the extrapolation rho_g + (x_a - x_g) . grad rho_g (English et al.
+//         2022; a Shepard ghost has no gradient: rho_g);
+//       hydrostatic: the ghost's pressure carried to the wall by the momentum balance of fluid
+//         at rest in the wall's frame, p_a = p(rho_g) + rho0 (g - a_a) . (x_a - x_g), then
+//         rho_a = p^-1(p_a) by the Tait equation (the "pressure cloning" of English et al. 2025,
+//         Comput. Fluids 303:106870, DualSPHysics 5.4's mDBC2; a_a the wall's acceleration, zero
+//         on fixed bodies). It does not differentiate the SPH density field, whose gradient is
+//         noise where the ghost's support is thin (a wedge of water on a beach, a film): there
+//         the linear rule let water sink onto the wall and shot it off again (measured in
+//         README "Beaches and thin water").
 // Wall velocity seen by the fluid (MdbcSlip): the body's (default, as DualSPHysics), no-slip
 // 2 v_body - v_g, or free-slip (v_g with its normal component mirrored about the body's), v_g
 // from the same interpolation. The body's velocity is restored after the force stage, so the
@@ -100,8 +110,9 @@ class MdbcBoundary final : public BoundaryModel<D> {
   using Selection = WallsSeeFluid;
   // dbc_bodies[b] != 0: body b's walls are DBC walls (continuity, the rho0 floor, the body's
   // velocity), as in DbcBoundary; the others get their density from the ghost nodes.
-  MdbcBoundary(MdbcSlip slip, double det_min, std::vector<std::uint8_t> dbc_bodies = {})
-      : slip_(slip), det_min_(det_min), dbc_bodies_(std::move(dbc_bodies)) {
+  MdbcBoundary(MdbcSlip slip, double det_min, std::vector<std::uint8_t> dbc_bodies = {},
+               MdbcPressure pressure = MdbcPressure::Linear)
+      : slip_(slip), pressure_(pressure), det_min_(det_min), dbc_bodies_(std::move(dbc_bodies)) {
     // All zeros (a pure mDBC case, as the case setup passes it) is no DBC body at all: the
     // per-particle checks and the density-floor pass are then skipped.
     if (std::none_of(dbc_bodies_.begin(), dbc_bodies_.end(), [](std::uint8_t d) { return d; }))
@@ -122,6 +133,7 @@ class MdbcBoundary final : public BoundaryModel<D> {
   // The checkpoint records that its walls were mDBC walls (a DBC checkpoint has no normals).
   void save(std::map<std::string, double>& out) const override {
     out["slip"] = static_cast<double>(slip_);
+    out["pressure"] = static_cast<double>(pressure_);
     for (std::size_t b = 0; b < dbc_bodies_.size(); ++b)
       if (dbc_bodies_[b]) out["dbc_body." + std::to_string(b)] = 1.0;
   }
@@ -130,6 +142,13 @@ class MdbcBoundary final : public BoundaryModel<D> {
       throw std::invalid_argument(
           "checkpoint: written by a run with DBC walls, but the case asks for mDBC "
           "(physics.boundary); restart with the case the run was started with");
+    // Checkpoints from before the option was there hold no entry: linear, the only rule then.
+    const auto pr = in.find("pressure");
+    const double rule = pr == in.end() ? static_cast<double>(MdbcPressure::Linear) : pr->second;
+    if (rule != static_cast<double>(pressure_))
+      throw std::invalid_argument(
+          "checkpoint: written by a run whose mDBC walls took another pressure rule "
+          "(physics.boundary.pressure); restart with the case the run was started with");
     // Every DBC body of the checkpoint must be one here, and the other way round.
     std::size_t saved = 0;
     for (auto it = in.lower_bound("dbc_body.");
@@ -154,6 +173,7 @@ class MdbcBoundary final : public BoundaryModel<D> {
 
  private:
   MdbcSlip slip_;
+  MdbcPressure pressure_;
   double det_min_;
   std::vector<std::uint8_t> dbc_bodies_;
   bool dbc_wall(const ParticleSet<D>& ps, std::size_t i) const {
@@ -165,8 +185,9 @@ class MdbcBoundary final : public BoundaryModel<D> {
 
 template <int D>
 std::unique_ptr<BoundaryModel<D>> make_mdbc(MdbcSlip slip, double det_min,
-                                            std::vector<std::uint8_t> dbc_bodies = {}) {
-  return std::make_unique<MdbcBoundary<D>>(slip, det_min, std::move(dbc_bodies));
+                                            std::vector<std::uint8_t> dbc_bodies = {},
+                                            MdbcPressure pressure = MdbcPressure::Linear) {
+  return std::make_unique<MdbcBoundary<D>>(slip, det_min, std::move(dbc_bodies), pressure);
 }
 
 extern template class MdbcBoundary<2>;

@@ -5,7 +5,10 @@
 // the fluid through the pair loop like any particle velocity. A pure function of time, so a
 // restart moves the bodies exactly as the uninterrupted run; the checkpoint keeps each body's
 // pose at the last prescribed time, and a restart from a case whose motion differs is refused.
-// With mDBC the wall normals turn with the body (from their body-frame copy, normal_ref).
+// With mDBC the wall normals turn with the body (from their body-frame copy, normal_ref), and
+// for mDBC's hydrostatic wall pressure each moving wall particle also gets its acceleration
+// (wall_acc), the central difference (v(t + e) - v(t - e)) / 2e of its placed velocity, e = 1 ms
+// (a jump in a law's velocity is spread over 2 ms rather than read as a spike).
 #pragma once
 
 #include <cmath>
@@ -67,8 +70,10 @@ class MovingBodies final : public StepHook<D> {
   }
 
   // Before the run: wall particles of moving bodies become moving walls with their current
-  // position as reference (pos_ref enabled), placed at their pose at t = 0.
-  static void prepare(ParticleSet<D>& ps, const std::vector<MotionLaw>& laws) {
+  // position as reference (pos_ref enabled), placed at their pose at t = 0; with
+  // `accelerations`, the wall_acc field is enabled and kept.
+  static void prepare(ParticleSet<D>& ps, const std::vector<MotionLaw>& laws,
+                      bool accelerations = false) {
     if (!any_moves(laws)) return;
     for (std::size_t i = 0; i < ps.total(); ++i) {
       const auto b = ps.body[i];
@@ -78,6 +83,7 @@ class MovingBodies final : public StepHook<D> {
     // mDBC normals turn with their body: keep them in the body frame too.
     // (By the flag, not the size: a rank's share of a set-up may be empty.)
     if (ps.enabled("normal")) ps.enable("normal_ref", ps.normal);
+    if (accelerations) ps.enable("wall_acc", std::vector<Vec<D>>(ps.total(), Vec<D>::Zero()));
     MovingBodies<D> m(laws);
     m.place_all(ps, 0.0);
   }
@@ -135,10 +141,16 @@ class MovingBodies final : public StepHook<D> {
 
  private:
   void place_all(ParticleSet<D>& ps, double t) {
+    const bool acc = !ps.wall_acc.empty();
+    if (acc && ahead_.size() < laws_.size())
+      ahead_.resize(laws_.size()), behind_.resize(laws_.size());
     for (std::size_t b = 0; b < laws_.size(); ++b) {
       if (!laws_[b].moves()) continue;
       poses_[b] = pose_at(b, t);
       placements_[b] = laws_[b].placement(poses_[b]);
+      if (!acc) continue;
+      ahead_[b] = laws_[b].placement(pose_at(b, t + kAccStep));
+      behind_[b] = laws_[b].placement(pose_at(b, t - kAccStep));
     }
     t_last_ = t;
     const long n = static_cast<long>(ps.size());
@@ -152,6 +164,12 @@ class MovingBodies final : public StepHook<D> {
       placements_[b].apply(ref, x, v);
       ps.pos[i] = x.template head<D>();
       ps.vel[i] = narrow<D>(Vec<D>(v.template head<D>()));
+      if (acc) {
+        Eigen::Vector3d xa, va, xb, vb;
+        ahead_[b].apply(ref, xa, va);
+        behind_[b].apply(ref, xb, vb);
+        ps.wall_acc[i] = ((va - vb) / (2.0 * kAccStep)).template head<D>();
+      }
       if (turn_normals) {
         Eigen::Vector3d nref = Eigen::Vector3d::Zero();
         nref.template head<D>() = ps.normal_ref[i];
@@ -174,6 +192,8 @@ class MovingBodies final : public StepHook<D> {
   std::vector<MotionLaw> laws_;
   std::vector<RigidPose> poses_;
   std::vector<RigidPlacement> placements_;
+  static constexpr double kAccStep = 1e-3;  // [s] for the walls' accelerations
+  std::vector<RigidPlacement> ahead_, behind_;
   std::vector<std::optional<PaddleAbsorber>> absorbers_;
   double t_last_ = 0.0;
 };

@@ -382,7 +382,8 @@ void CaseReader::read_shifting(const YAML::Node& node, const std::string& path,
     spec.shift_mode = model(*v, child(path, "mode"), kShiftModes, shift_mode_name);
 }
 
-// `boundary: {model: dbc}` or `{model: mdbc, slip: wall|noslip|freeslip, det_min: 1e-3}`.
+// `boundary: {model: dbc}` or
+// `{model: mdbc, slip: wall|noslip|freeslip, pressure: linear|hydrostatic, det_min: 1e-3}`.
 void CaseReader::read_boundary(const YAML::Node& node, const std::string& path,
                                CaseSpec& spec) const {
   expect(node.IsMap(), node, path, "a map such as {model: mdbc, slip: noslip}");
@@ -396,6 +397,9 @@ void CaseReader::read_boundary(const YAML::Node& node, const std::string& path,
   check_keys(node, path, case_schema::keys_for("physics.boundary", "mdbc"), " for model mdbc");
   if (auto v = find(node, "slip")) {
     spec.mdbc_slip = model(*v, child(path, "slip"), kMdbcSlips, mdbc_slip_name);
+  }
+  if (auto v = find(node, "pressure")) {
+    spec.mdbc_pressure = model(*v, child(path, "pressure"), kMdbcPressures, mdbc_pressure_name);
   }
   if (auto v = find(node, "det_min")) {
     spec.mdbc_det_min = number_if(

@@ -131,6 +131,9 @@ const std::vector<Key>& key_table() {
      "dbc: dynamic boundary conditions; mdbc: modified DBC (English et al. 2022)"},
     {"physics.boundary", "slip", "mdbc", "choice", "wall", "", "wall | noslip | freeslip",
      "velocity the walls show the fluid: the body's, 2 v_body - v_ghost, or the ghost's mirrored"},
+    {"physics.boundary", "pressure", "mdbc", "choice", "linear", "", "linear | hydrostatic",
+     "wall density from the ghost's: linear, rho_g + (x_w - x_g).grad rho_g (English et al. "
+     "2022); hydrostatic, p_w = p_g + rho0 (g - a_w).(x_w - x_g) (English et al. 2025)"},
     {"physics.boundary", "det_min", "mdbc", "number", "1e-3", "", "(0, 1)",
      "below this determinant of the ghost's correction matrix: Shepard average instead"},
 

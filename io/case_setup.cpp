@@ -46,7 +46,9 @@ double bytes_per_particle(const CaseSpec& spec, int dim) {
   }
   const double vec = 8.0 * dim * 1.25;
   if (mdbc) b += vec;
-  if (moving) b += vec * (mdbc ? 2.0 : 1.0);  // pos_ref, and normal_ref with mDBC
+  // pos_ref, and normal_ref with mDBC (and wall_acc with its hydrostatic wall pressure)
+  if (moving)
+    b += vec * (mdbc ? (spec.mdbc_pressure == MdbcPressure::Hydrostatic ? 3.0 : 2.0) : 1.0);
   if (spec.shifting == ShiftingModel::Fickian) b += three ? 105.0 : 80.0;
   return b;
 }
@@ -340,6 +342,7 @@ CaseSetup<D> setup_case(const CaseSpec& spec, const SetupReduce& red) {
   p.rho_max_factor = spec.rho_max_factor;
   p.boundary = spec.boundary;
   p.mdbc_slip = spec.mdbc_slip;
+  p.mdbc_pressure = spec.mdbc_pressure;
   p.mdbc_det_min = spec.mdbc_det_min;
   p.shifting = spec.shifting;
   p.kernel_gradient_correction = spec.kernel_gradient_correction;
@@ -422,7 +425,9 @@ CaseSetup<D> setup_case(const CaseSpec& spec, const SetupReduce& red) {
   std::vector<geometry::FilledBody>().swap(filled);
 
   // Moving bodies' particles become moving walls, placed at their pose at t = 0.
-  MovingBodies<D>::prepare(s.particles, s.motions);
+  // With mDBC's hydrostatic wall pressure they also carry their acceleration.
+  MovingBodies<D>::prepare(s.particles, s.motions,
+                           any_mdbc && p.mdbc_pressure == MdbcPressure::Hydrostatic);
 
   // Still-water height and c0 = coefsound sqrt(g H) (DualSPHysics' convention).
   const Vec<D> g = p.gravity.template head<D>();
@@ -851,7 +856,8 @@ Simulation<D> make_simulation(const CaseSetup<D>& setup, ParticleSet<D> particle
   if (setup.settling) hooks.push_back(std::make_unique<Settling<D>>(*setup.settling));
   std::unique_ptr<BoundaryModel<D>> wall =
       setup.params.boundary == BoundaryType::Mdbc
-          ? make_mdbc<D>(setup.params.mdbc_slip, setup.params.mdbc_det_min, setup.dbc_bodies)
+          ? make_mdbc<D>(setup.params.mdbc_slip, setup.params.mdbc_det_min, setup.dbc_bodies,
+                         setup.params.mdbc_pressure)
           : make_dbc<D>();
   return Simulation<D>(setup.params, std::move(particles), std::move(wall), std::move(hooks),
                        std::move(exchange));

@@ -136,6 +136,7 @@ struct CaseSpec {
   // Wall model: dbc | mdbc (bc/), and mDBC's slip mode and Shepard-fallback threshold.
   BoundaryType boundary = BoundaryType::Dbc;
   MdbcSlip mdbc_slip = MdbcSlip::Wall;
+  MdbcPressure mdbc_pressure = MdbcPressure::Linear;
   double mdbc_det_min = 1e-3;
   // Particle shifting: none | fickian, its coefficient A and free-surface threshold on div r
   // (0: the default for the dimension).

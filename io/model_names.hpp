@@ -21,6 +21,7 @@ inline constexpr std::array kDiffusionModels{
 inline constexpr std::array kIntegratorTypes{IntegratorType::Symplectic, IntegratorType::Verlet};
 inline constexpr std::array kBoundaryTypes{BoundaryType::Dbc, BoundaryType::Mdbc};
 inline constexpr std::array kMdbcSlips{MdbcSlip::Wall, MdbcSlip::NoSlip, MdbcSlip::FreeSlip};
+inline constexpr std::array kMdbcPressures{MdbcPressure::Linear, MdbcPressure::Hydrostatic};
 inline constexpr std::array kShiftingModels{ShiftingModel::None, ShiftingModel::Fickian};
 inline constexpr std::array kShiftModes{ShiftMode::Full, ShiftMode::NoBound, ShiftMode::NoFixed};
 
@@ -83,6 +84,16 @@ inline const char* mdbc_slip_name(MdbcSlip m) {
       return "freeslip";
   }
   return "slip";
+}
+
+inline const char* mdbc_pressure_name(MdbcPressure m) {
+  switch (m) {
+    case MdbcPressure::Linear:
+      return "linear";
+    case MdbcPressure::Hydrostatic:
+      return "hydrostatic";
+  }
+  return "pressure";
 }
 
 inline const char* shifting_name(ShiftingModel m) {

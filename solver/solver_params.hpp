@@ -17,6 +17,8 @@ enum class BoundaryType { Dbc, Mdbc };
 // DualSPHysics' default); NoSlip: 2 v_body - v_ghost; FreeSlip: the ghost velocity with its
 // normal component mirrored about the body's.
 enum class MdbcSlip { Wall, NoSlip, FreeSlip };
+// How an mDBC wall particle's density follows from its ghost node's (bc/mdbc.hpp).
+enum class MdbcPressure { Linear, Hydrostatic };
 // Particle shifting after each step (solver/physics/shifting.hpp): none, or Fickian (Lind et
 // al. 2012 with Skillen et al. 2013's coefficient, tangential only at the free surface).
 enum class ShiftingModel { None, Fickian };
@@ -51,6 +53,7 @@ struct SolverParams {
   double dt_collapse_factor = 1e-3;
   BoundaryType boundary = BoundaryType::Dbc;
   MdbcSlip mdbc_slip = MdbcSlip::Wall;
+  MdbcPressure mdbc_pressure = MdbcPressure::Linear;
   // mDBC: below this determinant of the ghost node's correction matrix the first-order
   // extrapolation is replaced by a Shepard average (DualSPHysics' default, 1e-3).
   double mdbc_det_min = 1e-3;

@@ -39,14 +39,17 @@ TEST(FieldTable, AFieldFollowsItsParticleThroughSortAndCheckpoint) {
   std::vector<Vec<2>> tag(ps.total());
   for (std::size_t i = 0; i < tag.size(); ++i) tag[i] = Vec<2>(7.0 * i, -3.0 * i);
   ps.enable("pos_ref", tag);
-  // The mDBC normals (and their body-frame copy) are optional fields of the same kind.
-  std::vector<Vec<2>> ntag(ps.total()), nref(ps.total());
+  // The mDBC normals (and their body-frame copy, and the moving walls' accelerations) are
+  // optional fields of the same kind.
+  std::vector<Vec<2>> ntag(ps.total()), nref(ps.total()), acc(ps.total());
   for (std::size_t i = 0; i < tag.size(); ++i) {
     ntag[i] = Vec<2>(0.5 * i, 2.0);
     nref[i] = Vec<2>(-1.0, 0.25 * i);
+    acc[i] = Vec<2>(3.0 * i, 0.125);
   }
   ps.enable("normal", ntag);
   ps.enable("normal_ref", nref);
+  ps.enable("wall_acc", acc);
   int enabled = 0;
   ps.for_each_field([&](const FieldInfo& f, const auto&) { enabled += ps.enabled(f); });
   EXPECT_EQ(enabled, ParticleSet<2>::kNumFields);
@@ -61,6 +64,7 @@ TEST(FieldTable, AFieldFollowsItsParticleThroughSortAndCheckpoint) {
     EXPECT_EQ(ps.pos_ref[i], Vec<2>(7.0 * id, -3.0 * id)) << "pos_ref of particle " << id;
     EXPECT_EQ(ps.normal[i], Vec<2>(0.5 * id, 2.0)) << "normal of particle " << id;
     EXPECT_EQ(ps.normal_ref[i], Vec<2>(-1.0, 0.25 * id)) << "normal_ref of particle " << id;
+    EXPECT_EQ(ps.wall_acc[i], Vec<2>(3.0 * id, 0.125)) << "wall_acc of particle " << id;
     EXPECT_EQ(ps.rho[i], 1000.0 + id);
     EXPECT_EQ(ps.velocity(i), Vec<2>(id, -double(id)));
   }
@@ -74,6 +78,7 @@ TEST(FieldTable, AFieldFollowsItsParticleThroughSortAndCheckpoint) {
   EXPECT_EQ(c.particles.pos_ref, ps.pos_ref);
   EXPECT_EQ(c.particles.normal, ps.normal);
   EXPECT_EQ(c.particles.normal_ref, ps.normal_ref);
+  EXPECT_EQ(c.particles.wall_acc, ps.wall_acc);
   EXPECT_EQ(c.particles.role, ps.role);
   EXPECT_EQ(c.particles.id, ps.id);
   c.particles.for_each_field([&](const FieldInfo& f, const auto& a) {

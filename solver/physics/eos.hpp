@@ -29,9 +29,9 @@ struct TaitEos {
     return c0 * std::pow(r, 0.5 * (gamma - 1.0));
   }
   // Density of a fluid at rest at depth d below its free surface: P = rho0 g d inverted.
-  double hydrostatic_density(double g_depth) const {
-    return rho0 * std::pow(1.0 + rho0 * g_depth / b, 1.0 / gamma);
-  }
+  double hydrostatic_density(double g_depth) const { return density(rho0 * g_depth); }
+  // The density at pressure p (the inverse of pressure(); p > -B).
+  double density(double p) const { return rho0 * std::pow(1.0 + p / b, 1.0 / gamma); }
 };
 
 }  // namespace swell

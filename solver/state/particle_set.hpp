@@ -57,7 +57,10 @@ struct FieldInfo {
   /* mDBC: vector from a wall particle to its wall surface (ghost node: pos + 2 normal) */ \
   X(normal, V, FieldClass::Constant, "normal", true)                                       \
   /* mDBC on a moving body: normal in the body frame */                                    \
-  X(normal_ref, V, FieldClass::Constant, nullptr, true)
+  X(normal_ref, V, FieldClass::Constant, nullptr, true)                                    \
+  /* mDBC's hydrostatic pressure on a moving body: the wall particle's acceleration, */    \
+  /* set with its position at every substep by the motion hook (bc/moving_bodies.hpp) */   \
+  X(wall_acc, V, FieldClass::Constant, nullptr, true)
 
 // Arrays that are dead while the particles are reordered and may serve as the reorder's
 // scratch: the vector one for the double vector fields, the double ones for the double scalar
@@ -193,6 +196,7 @@ struct ParticleSet {
     if (!pos_ref.empty()) pos_ref.back() = x;
     if (!normal.empty()) normal.back() = V::Zero();
     if (!normal_ref.empty()) normal_ref.back() = V::Zero();
+    if (!wall_acc.empty()) wall_acc.back() = V::Zero();
     n_active = pos.size();
   }
 

@@ -42,17 +42,29 @@ def geometry(hd, d, dp, paddle_cols=2):
                 x_top=x_top, t_end=t_end, r_law=r_law)
 
 
-def case_text(hd, d, dp, coefsound, name=None, coefh=1.0, viscosity="artificial"):
+def case_text(hd, d, dp, coefsound, name=None, coefh=1.0, viscosity="artificial", boundary="dbc",
+              settle=0.0):
     # Wall layers (and paddle columns) for the full support 2h: ceil(2 coefh sqrt(2) - 1/2), 3 at
     # coefh 1 and 4 at 1.5 (until 2026-12-06 the paddle and beach had 2 at coefh 1, which `swell
     # run` warns of: see the README, Solitary-wave runup); viscosity: artificial alpha 0.01 or
-    # water's laminar nu 1e-6.
+    # water's laminar nu 1e-6. boundary mdbc: walls with mDBC's hydrostatic wall pressure (the
+    # linear rule shoots the thin water at the shoreline off the beach: README, Beaches and thin
+    # water), and the tank open at its far end, which the beach's plateau buries (mDBC refuses a
+    # wall particle inside another body). settle > 0: a settling phase of that many seconds
+    # before the paddle starts (the run ends that much later).
     layers = math.ceil(2.0 * coefh * math.sqrt(2.0) - 0.5)
     g = geometry(hd, d, dp, layers)
     coefh = f"{coefh:.1f}" if coefh == round(coefh, 1) else f"{coefh:g}"
     visc = "{model: laminar, nu: 1.0e-6}" if viscosity == "laminar" else "{model: artificial, alpha: 0.01}"
     flags = (f" --coefh {coefh}" if coefh != "1.0" else "") + (
-        f" --viscosity {viscosity}" if viscosity != "artificial" else "")
+        f" --viscosity {viscosity}" if viscosity != "artificial" else "") + (
+        f" --boundary {boundary}" if boundary != "dbc" else "") + (
+        f" --settle {settle:g}" if settle > 0 else "")
+    walls = "\n  boundary: {model: mdbc, pressure: hydrostatic}" if boundary == "mdbc" else ""
+    tank_open = "[ymax, xmax]" if boundary == "mdbc" else "[ymax]"
+    t_end = g["t_end"] + settle
+    settling = f", settling: {{duration: {settle:g}}}" if settle > 0 else ""
+    start = f", start: {settle:g}" if settle > 0 else ""
     f = lambda v: f"{v:.6g}"
     x_end = g["x_top"] + 3 * dp
     ytop = g["top"] + 0.1 * d
@@ -69,21 +81,21 @@ physics:
   coefsound: {f(coefsound)}
   coefh: {coefh}
   viscosity: {visc}
-  density_diffusion: {{model: fourtakas, delta: 0.1}}
-time: {{end: {f(g['t_end'])}, cfl: 0.2}}
+  density_diffusion: {{model: fourtakas, delta: 0.1}}{walls}
+time: {{end: {f(t_end)}, cfl: 0.2{settling}}}
 bodies:
   - name: tank
     kind: boundary
     shape: {{box: {{min: [0, 0], max: [{f(x_end)}, {f(ytop)}]}}}}
     walls: inside
     layers: {layers}
-    open: [ymax]
+    open: {tank_open}
   - name: paddle                       # piston, Goring (1978) solitary-wave trajectory
     kind: boundary
     shape: {{box: {{min: [{f(g['paddle'][0])}, 0], max: [{f(g['paddle'][1])}, {f(ytop)}]}}}}
     walls: outside
     layers: {layers}
-    motion: {{type: wave, wave: solitary, depth: {f(d)}, height: {f(g['H'])}}}
+    motion: {{type: wave, wave: solitary, depth: {f(d)}, height: {f(g['H'])}{start}}}
   - name: beach                        # 1:19.85 from the toe to the top
     kind: boundary
     shape: {{polygon: {{points: [[{f(g['x_toe'])}, 0], [{f(g['x_top'])}, {f(g['top'])}], [{f(x_end)}, {f(g['top'])}], [{f(x_end)}, 0]]}}}}
@@ -96,7 +108,7 @@ gauges:
   - {{name: R, kind: runup, from: [{f(g['x_toe'])}, 0], to: [{f(g['x_top'])}, {f(g['top'])}], swl: {f(d)}, sampling: max}}
   - {{name: eta_toe, kind: height, at: [{f(g['x_toe'] - 0.5 * d)}, 0]}}
   - {{name: eta_mid, kind: height, at: [{f(0.5 * (g['paddle'][1] + g['x_toe']))}, 0]}}
-output: {{every: {f(g['t_end'] / 20)}, vtk: false, hdf5: true, gauge_every: 0.02}}
+output: {{every: {f(t_end / 20)}, vtk: false, hdf5: true, gauge_every: 0.02}}
 """
 
 
@@ -108,6 +120,8 @@ def main():
     ap.add_argument("--coefsound", type=float, default=10.0, help="physics.coefsound (default 10: half the steps of 20; the flow stays below Mach 0.2)")
     ap.add_argument("--coefh", type=float, default=1.0, help="physics.coefh (default 1); walls and paddle get the layers of the full support (3 at coefh 1, 4 at 1.5)")
     ap.add_argument("--viscosity", choices=["artificial", "laminar"], default="artificial", help="artificial alpha 0.01 (default) or water's laminar nu 1e-6")
+    ap.add_argument("--boundary", choices=["dbc", "mdbc"], default="dbc", help="wall model (default dbc); mdbc: hydrostatic wall pressure, tank open at its far end")
+    ap.add_argument("--settle", type=float, default=0.0, help="settling phase [s] before the paddle starts (default 0; 3 with mdbc, whose water first settles onto the stepped beach)")
     ap.add_argument("--name", help="case name (default synolakis_hNNN, NNN = 1000 H/d)")
     ap.add_argument("-o", "--out", help="case file to write (default runs/synolakis_hNNN.yaml)")
     ap.add_argument("--run", action="store_true", help="run it: swell run -t 1")
@@ -116,10 +130,13 @@ def main():
     for key in ("hd", "d", "dp", "coefsound", "coefh"):
         if not getattr(a, key) > 0:
             ap.error(f"--{key}: expected a number > 0, got {getattr(a, key)}")
+    if not a.settle >= 0:
+        ap.error(f"--settle: expected a number >= 0, got {a.settle}")
     path = a.out or f"runs/synolakis_h{round(a.hd * 1000):03d}.yaml"
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     with open(path, "w") as fh:
-        fh.write(case_text(a.hd, a.d, a.dp, a.coefsound, a.name, a.coefh, a.viscosity))
+        fh.write(case_text(a.hd, a.d, a.dp, a.coefsound, a.name, a.coefh, a.viscosity, a.boundary,
+                           a.settle))
     print(path)
     if a.run:
         out = os.path.splitext(path)[0]
