@@ -5,8 +5,9 @@
 
 Each RUN_DIR is the output folder of a case written by make_case.py (its gauges_runup.csv holds
 R above the still-water level; the case's header comment gives H/d and d). R_max is the largest
-value of the R column; R_rest its first row (the shoreline at rest, which the discrete wedge puts
-below the still-water level), and R_max - R_rest the runup corrected for that offset. Both are
+value of the R column; R_rest its value when the paddle starts (its first row, or its last row
+before the paddle's `start` when the case settles first: the shoreline at rest, which the
+discrete wedge puts below the still-water level), and R_max - R_rest the runup corrected for that offset. Both are
 listed against the law R/d = 2.831 sqrt(cot beta) (H/d)^(5/4) and the mean of the lab points
 within +-0.005 of the run's H/d (../shared/reference/synolakis_1987_runup_lab.csv; lab waves break
 for H/d > 0.045). Writes runup_table.csv, runup.png and runup.svg beside it (matplotlib, numpy
@@ -55,6 +56,11 @@ def read_run(folder):
             v = re.search(r"^\s*viscosity:\s*\{\s*model:\s*(\w+)", text, re.M)
             meta["settings"] = "coefh %g, %s" % (float(c.group(1)) if c else 1.0,
                                                  v.group(1) if v else "artificial")
+            b = re.search(r"^\s*boundary:\s*\{\s*model:\s*(\w+)(?:,\s*pressure:\s*(\w+))?", text, re.M)
+            if b and b.group(1) != "dbc":
+                meta["settings"] += ", " + b.group(1) + (" " + b.group(2) if b.group(2) else "")
+            st = re.search(r"motion:\s*\{[^}]*start:\s*([0-9.eE+-]+)", text)
+            meta["start"] = float(st.group(1)) if st else 0.0
             break
     if not meta:
         raise SystemExit(f"{folder}: no case written by make_case.py next to it ({folder}.yaml)")
@@ -72,7 +78,9 @@ def read_run(folder):
     if os.path.exists(summary):
         m = re.search(r"wall time:\s+(\S+) s", open(summary).read())
         wall = m.group(1) if m else ""
-    return dict(meta, r_max=r[k], t_max=t[k], r_rest=r[0], t_end=t[-1], wall=wall)
+    before = np.nonzero(t <= meta["start"])[0]
+    rest = r[before[-1]] if len(before) else r[0]
+    return dict(meta, r_max=r[k], t_max=t[k], r_rest=rest, t_end=t[-1], wall=wall)
 
 
 def read_table(path):
