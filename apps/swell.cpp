@@ -23,6 +23,7 @@
 #include "apps/verify_command.hpp"
 #include "apps/wave_analysis_command.hpp"
 #include "apps/wave_predict_command.hpp"
+#include "apps/wave_target_command.hpp"
 #include "apps/waves_command.hpp"
 #include "io/case_file.hpp"
 #include "io/case_schema.hpp"
@@ -243,11 +244,12 @@ int main(int argc, char** argv) {
   auto* waves = app.add_subcommand(
       "waves",
       "wave theory (swell waves H T d [--paddle flap --hinge l]), analysis (analyse), Goda's wall "
-      "pressures (goda)");
+      "pressures (goda), a case's target wave (target)");
   waves->require_subcommand(0, 1);
   const swell::WavesAnalyseCommand waves_analyse = swell::add_waves_analyse_command(*waves);
   const swell::WavesPredictCommand waves_predict = swell::add_waves_predict_command(*waves);
   const swell::WavesGodaCommand waves_goda = swell::add_waves_goda_command(*waves);
+  const swell::WavesTargetCommand waves_target = swell::add_waves_target_command(*waves);
   auto* waves_h = waves->add_option("H", waves_opt.height, "wave height [m]")->check(kPositive);
   waves->add_option("T", waves_opt.period, "wave period [s]")->check(kPositive);
   waves->add_option("d", waves_opt.depth, "still-water depth [m]")->check(kPositive);
@@ -389,6 +391,8 @@ int main(int argc, char** argv) {
       waves_predict.run(std::cout);
     } else if (waves_goda.chosen()) {  // swell waves goda
       waves_goda.run(std::cout);
+    } else if (waves_target.chosen()) {  // swell waves target
+      waves_target.run(std::cout);
     } else if (*help) {
       if (help_key.empty()) {
         std::cout << swell::case_schema::reference_markdown();

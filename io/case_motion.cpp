@@ -276,10 +276,11 @@ void MotionReader::read_file(const YAML::Node& node, const std::string& path,
 //   regular:     height, period, order (1 | 2, default 1), phase (deg, default 0)
 //   solitary:    height (piston only; no ramp)
 //   irregular:   hs, tp, spectrum (jonswap | pm, default jonswap), gamma (3.3), components
-//                (200), seed (1), f_min, f_max (Hz; default 0.5/tp and 3/tp)
+//                (200), seed (1), f_min, f_max (Hz; default 0.5/tp and 3/tp), order (1 | 2:
+//                with the bound long wave, pistons only)
 //   focused:     amplitude (linear crest at the focus), focus_distance (from the paddle, m),
 //                focus_time (s after the motion's start), tp, spectrum, gamma, components (60),
-//                f_min, f_max
+//                f_min, f_max, order
 // The wave's time is the motion's local time (from `start`). Unless `ramp` is given, the
 // paddle ramps up over 2 periods (T or Tp); a solitary wave starts from rest and takes none.
 void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
@@ -358,25 +359,30 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
   label.precision(4);
   label << kind << " wave, " << (flap ? "flap" : "piston") << ", depth " << paddle.depth << " m";
   double period_for_ramp = 0.0;
+  int order = 1;
+  if (auto v = find(node, "order")) {
+    order = integer(*v, child(path, "order"));
+    expect(order == 1 || order == 2, *v, child(path, "order"), "1 or 2");
+    if (order == 2 && flap)
+      fail(*v, child(path, "order") +
+                   ": second-order generation is implemented for pistons only; use order: "
+                   "1 with a flap");
+  }
+  spec.wave_order = order;
+  // A component set (irregular sea, focused group) to first or second order.
+  const auto component_paddle = [&](const std::vector<waves::SurfaceComponent>& surface) {
+    return order == 2 ? waves::second_order_paddle(paddle, surface, g_)
+                      : waves::linear_paddle(paddle, surface, g_);
+  };
   try {
     waves::PaddleSignal signal;
     if (kind == "regular") {
       const double h = number_pos("height"), t = number_pos("period");
-      int order = 1;
-      if (auto v = find(node, "order")) {
-        order = integer(*v, child(path, "order"));
-        expect(order == 1 || order == 2, *v, child(path, "order"), "1 or 2");
-        if (order == 2 && flap)
-          fail(*v, child(path, "order") +
-                       ": second-order generation is implemented for pistons only; use order: "
-                       "1 with a flap");
-      }
       double phase = 0.0;
       if (auto v = find(node, "phase")) phase = kDegree * number(*v, child(path, "phase"));
       signal = waves::regular_paddle(paddle, h, t, order, phase, g_);
       spec.wave_height = h;
       spec.wave_period = t;
-      spec.wave_order = order;
       spec.wave_phase = phase;
       const waves::WaveAssessment a =
           waves::assess_regular_wave(h, t, paddle.depth, paddle, order, dp_, g_);
@@ -426,17 +432,18 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
           expect(seed >= 0, *v, child(path, "seed"), "an integer >= 0");
           sp.seed = static_cast<std::uint64_t>(seed);
         }
-        signal = waves::linear_paddle(paddle, waves::irregular_sea(sp), g_);
+        signal = component_paddle(waves::irregular_sea(sp));
         label << ", Hs " << sp.hs << " m, Tp " << sp.tp << " s, " << sp.components
               << " components, seed " << sp.seed;
+        if (order == 2) label << ", order 2 (bound long wave)";
       } else {
         const double a = number_pos("amplitude");
         const double xf = number_pos("focus_distance");
         const double tf = number_pos("focus_time");
-        signal =
-            waves::linear_paddle(paddle, waves::focused_group(sp, a, xf, tf, paddle.depth, g_), g_);
+        signal = component_paddle(waves::focused_group(sp, a, xf, tf, paddle.depth, g_));
         label << ", crest " << a << " m at " << xf << " m from the paddle, t " << tf << " s, Tp "
               << sp.tp << " s";
+        if (order == 2) label << ", order 2 (bound long wave)";
       }
     }
     spec.paddle = std::make_shared<const waves::PaddleSignal>(std::move(signal));

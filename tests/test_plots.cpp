@@ -11,7 +11,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <numbers>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "apps/validate_command.hpp"
 #include "validation/metrics.hpp"
@@ -278,6 +282,71 @@ TEST(Plots, BenchAndRunupScriptsWriteSvgWithUnitsAndLabels) {
   const std::string bad = runup.substr(0, runup.find(" --replot")) + " --replot '" +
                           (d / "missing.csv").string() + "' 2> /dev/null";
   EXPECT_EQ(WEXITSTATUS(std::system(bad.c_str())), 2);
+}
+
+// validation/wave_flume2d/bound_long_wave.py on synthetic gauges whose long waves are known:
+// the bound wave itself (ratio 1, nothing free), the bound wave of waves 10 % low (ratio 0.81,
+// 1 against the measured amplitudes) and the bound wave plus a free one as large (1 not bound).
+TEST(Plots, BoundLongWaveScriptReadsKnownLongWaves) {
+  constexpr double kPi = std::numbers::pi;
+  std::string why;
+  if (!plots_possible(&why)) GTEST_SKIP() << "plot checks skipped: " << why;
+  const std::string python = find_plot_python();
+  const fs::path src(SWELL_SOURCE_DIR);
+  const fs::path d = fs::path(SWELL_BINARY_DIR) / "test_plots" / "bound_long_wave";
+  fs::remove_all(d);
+  const double w1 = 2 * kPi * 0.65, w2 = 2 * kPi * 0.80, a1 = 0.02, a2 = 0.018, b = 0.0018;
+  const auto linear = [&](double t) { return a1 * std::cos(w1 * t) + a2 * std::cos(w2 * t + 1); };
+  const auto bound = [&](double t) { return b * std::cos((w2 - w1) * t + 1.0); };
+  {
+    fs::create_directories(d);
+    std::ofstream tgt(d / "target.csv");
+    tgt << "# synthetic\ntime [s],eta_1.86 [m],eta_bound_1.86 [m]\n";
+    for (int i = 0; i <= 2000; ++i) {
+      const double t = 0.01 * i;
+      tgt << t << "," << linear(t) + bound(t) << "," << bound(t) << "\n";
+    }
+  }
+  const auto run = [&](const std::string& name, double scale, double free) {
+    fs::create_directories(d / name);
+    std::ofstream g(d / name / "gauges_height.csv");
+    g << "# swell gauges\ntime [s],eta_2m [m]\n";
+    for (int i = 0; i <= 2000; ++i) {
+      const double t = 0.01 * i;
+      g << t << ","
+        << 0.4 + scale * linear(t) + scale * scale * bound(t) + free * std::cos((w2 - w1) * t - 0.5)
+        << "\n";
+    }
+  };
+  run("exact", 1.0, 0.0);
+  run("low", 0.9, 0.0);
+  run("free", 1.0, b);
+  const std::string cmd = "'" + python + "' '" +
+                          (src / "validation" / "wave_flume2d" / "bound_long_wave.py").string() +
+                          "' --target '" + (d / "target.csv").string() + "' --face 0.14 '" +
+                          (d / "exact").string() + "' '" + (d / "low").string() + "' '" +
+                          (d / "free").string() + "' -o '" + (d / "out").string() + "' > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream in(d / "out" / "bound_long_wave.csv");
+  std::string line;
+  std::getline(in, line);  // header
+  std::map<std::string, std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
+    ASSERT_EQ(cells.size(), 13u) << line;
+    rows[cells[0]] = cells;
+  }
+  ASSERT_EQ(rows.size(), 3u);
+  // measured / bound (5), phase lag (6), not bound / bound (8), ratio to the measured a1 a2 (12).
+  EXPECT_NEAR(std::stod(rows["exact"][5]), 1.0, 0.01);
+  EXPECT_NEAR(std::stod(rows["exact"][6]), 0.0, 0.005);
+  EXPECT_NEAR(std::stod(rows["exact"][8]), 0.0, 0.01);
+  EXPECT_NEAR(std::stod(rows["low"][5]), 0.81, 0.02);
+  EXPECT_NEAR(std::stod(rows["low"][12]), 1.0, 0.02);
+  EXPECT_NEAR(std::stod(rows["free"][8]), 1.0, 0.02);
+  EXPECT_TRUE(fs::exists(d / "out" / "bound_long_wave.png"));
 }
 
 }  // namespace

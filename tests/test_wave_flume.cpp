@@ -6,9 +6,11 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
+#include "apps/wave_target_command.hpp"
 #include "bc/absorption.hpp"
 #include "case_run.hpp"
 #include "io/case_file.hpp"
@@ -83,6 +85,23 @@ TEST(WaveCaseKeys, RegularPistonAndFlap) {
                  "components: 50, seed: 7}"),
       "flume.yaml");
   EXPECT_EQ(irr.bodies[1].motion.paddle->components.size(), 50u);
+  EXPECT_EQ(irr.bodies[1].motion.paddle->pair_components, 0u);  // first order by default
+  // order: 2 adds the bound long wave's pair terms; a flap refuses it.
+  const CaseSpec irr2 = parse_case_text(
+      flume_case("{type: wave, wave: irregular, depth: 0.3, hs: 0.03, tp: 1.2, gamma: 3.3, "
+                 "components: 50, seed: 7, order: 2}"),
+      "flume.yaml");
+  EXPECT_EQ(irr2.bodies[1].motion.paddle->pair_components, 50u);
+  EXPECT_EQ(irr2.bodies[1].motion.paddle->pair_paddle.size(), 50u * 49u / 2u);
+  EXPECT_NE(irr2.bodies[1].motion.wave_label.find("bound long wave"), std::string::npos);
+  try {
+    parse_case_text(flume_case("{type: wave, paddle: flap, hinge: [0.115, 0.05], wave: "
+                               "irregular, depth: 0.3, hs: 0.03, tp: 1.2, order: 2}"),
+                    "flume.yaml");
+    ADD_FAILURE() << "a second-order flap sea was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("pistons only"), std::string::npos) << e.what();
+  }
   const CaseSpec foc = parse_case_text(
       flume_case("{type: wave, wave: focused, depth: 0.3, amplitude: 0.03, tp: 1.2, "
                  "focus_distance: 2.0, focus_time: 8.0}"),
@@ -93,6 +112,67 @@ TEST(WaveCaseKeys, RegularPistonAndFlap) {
   EXPECT_TRUE(sol.bodies[1].motion.paddle->solitary);
   EXPECT_DOUBLE_EQ(sol.bodies[1].motion.ramp, 0.0);
   EXPECT_FALSE(sol.bodies[1].motion.absorption);
+}
+
+// `swell waves target`: the case's target wave at distances from the paddle, ramped as the
+// paddle is, and its bound part (the second-order signal's elevation less the linear one's).
+TEST(WaveTarget, CaseTargetAndBoundPart) {
+  const fs::path dir = fs::temp_directory_path() / "swell_wave_target_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string motion =
+      "{type: wave, wave: irregular, depth: 0.3, hs: 0.04, tp: 1.2, components: 2, f_min: "
+      "0.6, f_max: 1.0, order: 2, ramp: 2.0, start: 0.5}";
+  { std::ofstream(dir / "c.yaml") << flume_case(motion, 10.0); }
+  WavesTargetOptions opt;
+  opt.case_file = (dir / "c.yaml").string();
+  opt.at = "0.5,2";
+  opt.end = 6.0;
+  opt.every = 0.25;
+  std::ostringstream out;
+  run_waves_target(opt, out);
+  const CaseSpec spec = parse_case_text(flume_case(motion, 10.0), "c.yaml");
+  const waves::PaddleSignal& full = *spec.bodies[1].motion.paddle;
+  waves::PaddleSignal lin = full;
+  lin.pair_components = 0;
+  std::istringstream in(out.str());
+  std::string line;
+  int rows = 0;
+  double largest_bound = 0.0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+    std::vector<double> v;
+    std::stringstream ls(line);
+    for (std::string cell; std::getline(ls, cell, ',');) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 5u) << line;
+    const double t = v[0], tau = t - 0.5;
+    double ramp = tau <= 0.0 ? 0.0 : 1.0;
+    if (tau > 0.0 && tau < 2.0) ramp = (tau / 2) * (tau / 2) * (3 - tau);
+    for (int k = 0; k < 2; ++k) {
+      const double x = k == 0 ? 0.5 : 2.0;
+      const double e = ramp * full.elevation(tau, x), b = e - ramp * lin.elevation(tau, x);
+      EXPECT_NEAR(v[1 + 2 * k], e, 1e-8) << t;
+      EXPECT_NEAR(v[2 + 2 * k], b, 1e-8) << t;
+      largest_bound = std::max(largest_bound, std::abs(v[2 + 2 * k]));
+    }
+    ++rows;
+  }
+  EXPECT_EQ(rows, 25);
+  EXPECT_GT(largest_bound, 1e-4);  // the pair's set-down is there
+  // A case without a wavemaker is refused, naming the file.
+  {
+    std::ofstream(dir / "still.yaml") << "dim: 2\ndp: 0.02\ntime: {end: 1}\nbodies:\n"
+                                         "  - {name: w, kind: fluid, shape: {box: {min: [0, 0], "
+                                         "max: [1, 0.2]}}}\n";
+  }
+  opt.case_file = (dir / "still.yaml").string();
+  try {
+    run_waves_target(opt, out);
+    ADD_FAILURE() << "a case without a wave was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("still.yaml"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
 }
 
 // Active absorption: the keys, the defaults and the gains (bc/absorption.hpp).

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "waves/dispersion.hpp"
@@ -265,6 +266,98 @@ TEST(WaveSpectrum, FocusedGroupCrestsAtFocus) {
   // Nowhere else on the focus line in time is the elevation as high.
   for (double t = 0; t < 40; t += 0.05)
     if (std::abs(t - tf) > 0.2) EXPECT_LT(linear_elevation(group, d, xf, t, g), 0.9 * A) << t;
+}
+
+// Second-order pair kernels (waves/theory.hpp) against what theory fixes independently: the sum
+// kernel of a component with itself is Stokes' second harmonic; the difference kernel of two
+// close frequencies is Longuet-Higgins & Stewart's (1962) set-down from the radiation stress;
+// the bound wave conserves mass with its flux; the subharmonic piston supplies that flux.
+TEST(WaveSecondOrder, KernelsAgainstStokesSetDownAndMassConservation) {
+  for (double d : {0.3, 0.6})
+    for (double T : {0.8, 1.2, 2.0, 4.0}) {
+      const double w = 2 * kPi / T, k = k_bisection(w, d), a = 0.01;
+      // a2 = a^2 G+(i, i) / 2 = a stokes2_harmonic_ratio(k, d, 2a).
+      EXPECT_NEAR(0.5 * a * a * second_order_kernel(w, k, w, k, d, true, g),
+                  a * stokes2_harmonic_ratio(k, d, 2 * a), 1e-12)
+          << "d " << d << " T " << T;
+      // Set-down under a narrow group, -g (2 cg / c - 1/2) / (g d - cg^2) per a_i a_j.
+      const double c = w / k, n = 0.5 * (1 + 2 * k * d / std::sinh(2 * k * d)), cg = n * c;
+      const double lhs = -g * (2 * cg / c - 0.5) / (g * d - cg * cg);
+      const double w2 = w * (1 - 1e-5), k2 = k_bisection(w2, d);
+      const double gm = second_order_kernel(w, k, w2, k2, d, false, g);
+      EXPECT_NEAR(gm / lhs, 1.0, 1e-3) << "d " << d << " T " << T;
+      EXPECT_LT(gm, 0.0);
+      // The piston then moves with the set-down's flux: X2' = cg eta_b / d.
+      const double p = subharmonic_piston(w, k, w2, k2, d, g);
+      EXPECT_NEAR(p * (w - w2) * d / (cg * lhs), 1.0, 1e-3);
+    }
+  // Two distinct components: symmetric kernel; mass conservation of the bound wave,
+  // (w_i - w_j) G- = (k_i - k_j) F, F from the bound potential and the Stokes flux.
+  const double d = 0.4;
+  for (const auto& [wi, wj] : {std::pair{6.0, 5.0}, {5.0, 2.0}, {9.0, 8.5}, {3.0, 1.0}}) {
+    const double ki = k_bisection(wi, d), kj = k_bisection(wj, d);
+    const double gij = second_order_kernel(wi, ki, wj, kj, d, false, g);
+    EXPECT_NEAR(gij, second_order_kernel(wj, kj, wi, ki, d, false, g), 1e-12 * std::abs(gij));
+    EXPECT_NEAR((wi - wj) * gij, (ki - kj) * subharmonic_flux(wi, ki, wj, kj, d, g),
+                1e-10 * std::abs((wi - wj) * gij));
+    EXPECT_NEAR(subharmonic_piston(wi, ki, wj, kj, d, g), -subharmonic_piston(wj, kj, wi, ki, d, g),
+                1e-12 * std::abs(gij));
+  }
+  const double k1 = k_bisection(5.0, d);
+  EXPECT_THROW(second_order_kernel(5.0, k1, 5.0, k1, d, false, g), std::invalid_argument);
+  EXPECT_THROW(subharmonic_piston(5.0, k1, 5.0, k1, d, g), std::invalid_argument);
+}
+
+// The second-order signal of a component set: the paddle and the target elevation are the
+// linear ones plus the pair terms summed directly here (over 300 components, so the evaluation's
+// blocks of 128 and their edges are crossed); the velocity is the displacement's derivative.
+TEST(WaveSecondOrder, PairSignalIsTheDirectSum) {
+  SpectrumSpec j;
+  j.hs = 0.06;
+  j.tp = 1.3;
+  j.components = 300;
+  const auto sea = irregular_sea(j);
+  const double d = 0.45;
+  const PaddleGeometry piston{PaddleGeometry::Type::Piston, d, 0.0};
+  const PaddleSignal lin = linear_paddle(piston, sea, g);
+  const PaddleSignal so = second_order_paddle(piston, sea, g);
+  ASSERT_EQ(so.pair_components, 300u);
+  ASSERT_EQ(so.components.size(), lin.components.size());
+  std::vector<double> k(sea.size());
+  for (std::size_t i = 0; i < sea.size(); ++i) k[i] = k_bisection(sea[i].omega, d);
+  for (double t : {0.0, 3.7, 41.2}) {
+    double x2 = 0, v2 = 0, e0 = 0, e1 = 0;
+    for (std::size_t i = 0; i < sea.size(); ++i)
+      for (std::size_t jj = i + 1; jj < sea.size(); ++jj) {
+        const auto &a = sea[i], &b = sea[jj];
+        const double aa = a.amplitude * b.amplitude;
+        const double psi = (a.omega - b.omega) * t + a.phase - b.phase;
+        const double p = aa * subharmonic_piston(a.omega, k[i], b.omega, k[jj], d, g);
+        const double gm = aa * second_order_kernel(a.omega, k[i], b.omega, k[jj], d, false, g);
+        x2 += p * std::sin(psi);
+        v2 += p * (a.omega - b.omega) * std::cos(psi);
+        e0 += gm * std::cos(psi);
+        e1 += gm * std::cos(psi - (k[i] - k[jj]) * 2.5);
+      }
+    const double scale = 1e-9 + 1e-6 * std::abs(x2);
+    EXPECT_NEAR(so.displacement(t) - lin.displacement(t), x2, scale) << t;
+    EXPECT_NEAR(so.velocity(t) - lin.velocity(t), v2, 1e-9 + 1e-6 * std::abs(v2)) << t;
+    EXPECT_NEAR(so.elevation(t, 0.0) - lin.elevation(t, 0.0), e0, 1e-9) << t;
+    EXPECT_NEAR(so.elevation(t, 2.5) - lin.elevation(t, 2.5), e1, 1e-9) << t;
+    const double e = 1e-6;
+    EXPECT_NEAR(so.velocity(t), (so.displacement(t + e) - so.displacement(t - e)) / (2 * e), 1e-7);
+  }
+  // The bound long wave is a set-down: over a repeat of the sea its mean is negative.
+  const double repeat = 300 / (3 / j.tp - 0.5 / j.tp);
+  double mean = 0;
+  for (int i = 0; i < 4000; ++i)
+    mean += (so.elevation(repeat * i / 4000, 0.0) - lin.elevation(repeat * i / 4000, 0.0)) / 4000;
+  EXPECT_LT(mean, 0.0);
+  // One component has no pair; a flap or a repeated frequency is refused.
+  EXPECT_EQ(second_order_paddle(piston, {sea[0]}, g).pair_components, 0u);
+  EXPECT_THROW(second_order_paddle({PaddleGeometry::Type::Flap, d, 0.0}, sea, g),
+               std::invalid_argument);
+  EXPECT_THROW(second_order_paddle(piston, {sea[0], sea[0]}, g), std::invalid_argument);
 }
 
 TEST(WaveTheory, StokesSecondOrderCrestAndTrough) {

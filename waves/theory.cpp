@@ -40,6 +40,54 @@ double solitary_elevation(double height, double depth, double x, double t, doubl
   return height / (ch * ch);
 }
 
+namespace {
+
+struct PairTerms {
+  double w, k, q, r, b;  // W, K, Q, R, B of theory.hpp
+};
+
+PairTerms pair_terms(double wi, double ki, double wj, double kj, double d, bool sum, double g) {
+  if (!(wi > 0.0 && wj > 0.0 && ki > 0.0 && kj > 0.0 && d > 0.0))
+    throw std::invalid_argument(
+        "second-order pair: frequencies, wave numbers and depth must be > 0");
+  const double s = sum ? 1.0 : -1.0;
+  PairTerms p;
+  p.w = wi + s * wj;
+  p.k = ki + s * kj;
+  if (!sum && p.w == 0.0)
+    throw std::invalid_argument(
+        "second-order pair: two components of the same frequency have no difference term");
+  p.q = g * g * ki * kj / (wi * wj);
+  const double ei = (g * g * ki * ki - wi * wi * wi * wi) / wi;
+  const double ej = (g * g * kj * kj - wj * wj * wj * wj) / wj;
+  p.r = -p.w * (p.q - s * wi * wj) - 0.5 * (ei + s * ej);
+  // g K tanh(K d) is even in K; |K d| > 350 would overflow nothing (tanh saturates).
+  p.b = p.r / (g * p.k * std::tanh(p.k * d) - p.w * p.w);
+  return p;
+}
+
+}  // namespace
+
+double second_order_kernel(double wi, double ki, double wj, double kj, double d, bool sum,
+                           double g) {
+  const PairTerms p = pair_terms(wi, ki, wj, kj, d, sum, g);
+  const double s = sum ? 1.0 : -1.0;
+  return (p.w * p.b - 0.5 * (p.q - s * wi * wj - wi * wi - wj * wj)) / g;
+}
+
+double subharmonic_flux(double wi, double ki, double wj, double kj, double d, double g) {
+  const PairTerms p = pair_terms(wi, ki, wj, kj, d, false, g);
+  return p.b * std::tanh(p.k * d) + 0.5 * (g * ki / wi + g * kj / wj);
+}
+
+double subharmonic_piston(double wi, double ki, double wj, double kj, double d, double g) {
+  const double kdiff = ki - kj;
+  if (kdiff == 0.0)
+    throw std::invalid_argument(
+        "second-order pair: two components of the same frequency have no difference term");
+  return second_order_kernel(wi, ki, wj, kj, d, false, g) / (kdiff * d);
+}
+
 WaveAssessment assess_regular_wave(double height, double period, double depth,
                                    const PaddleGeometry& paddle, int order, double dp, double g) {
   if (!(height > 0.0) || !(period > 0.0) || !(depth > 0.0))

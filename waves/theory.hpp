@@ -24,6 +24,41 @@ double stokes2_harmonic_ratio(double k, double depth, double height);
 double solitary_elevation(double height, double depth, double x, double t, double x0 = 0.0,
                           double g = kStandardGravity);
 
+// Second-order bound interaction of two linear components a_i cos theta_i and a_j cos theta_j,
+// theta = omega t + phi - k x (omega^2 = g k tanh kd), in depth d. The second-order elevation
+// they force is
+//   eta2 = a_i a_j [G+ cos(theta_i + theta_j) + G- cos(theta_i - theta_j)]   (i != j)
+// and, for one component with itself, a_i^2 G+(i, i) / 2 cos 2 theta_i (Stokes' second
+// harmonic). G from the second-order potential problem (the kernels of Sharma & Dean 1981, in the
+// form derived in the README, "Wavemakers"): with W = omega_i +- omega_j, K = k_i +- k_j,
+//   Q = g^2 k_i k_j / (omega_i omega_j),
+//   R = -W (Q -+ omega_i omega_j) - [(g^2 k_i^2 - omega_i^4) / omega_i +- (g^2 k_j^2 -
+//       omega_j^4) / omega_j] / 2,
+//   B = R / (g K tanh(K d) - W^2)   (the bound potential's amplitude per a_i a_j),
+//   G = [W B - (Q -+ omega_i omega_j - omega_i^2 - omega_j^2) / 2] / g.
+// `sum` picks G+ (true) or G- (false). G- is symmetric in i, j and tends to Longuet-Higgins &
+// Stewart's (1962) set-down, -g (2 c_g / c - 1/2) / (g d - c_g^2), as omega_j -> omega_i.
+// Throws std::invalid_argument for G- of two equal frequencies (no bound long wave).
+double second_order_kernel(double omega_i, double k_i, double omega_j, double k_j, double depth,
+                           bool sum, double g = kStandardGravity);
+
+// The volume flux of the pair's difference-frequency bound wave, bound potential plus the
+// waves' Stokes flux, per a_i a_j: F = B- tanh(K d) + (g k_i / omega_i + g k_j / omega_j) / 2,
+// the amplitude of q2 = F cos(theta_i - theta_j). Mass conservation of the bound wave,
+// (omega_i - omega_j) G- = (k_i - k_j) F, holds exactly (a test checks it).
+double subharmonic_flux(double omega_i, double k_i, double omega_j, double k_j, double depth,
+                        double g = kStandardGravity);
+
+// Subharmonic piston motion of the pair: X2 = P a_i a_j sin(psi_i - psi_j), psi = omega t + phi
+// (the paddle's phase of each component), with P = G- / ((k_i - k_j) d): the piston moves with
+// the depth-averaged velocity of the bound long wave, X2' = F cos(psi_i - psi_j) / d, so that
+// the volume it displaces is the bound wave's and no free long wave is left to make up the
+// difference (the long-wave, mass-flux form of second-order subharmonic generation; Sand 1982,
+// Schaffer 1996's theory reduces to it as the band narrows; it drops the near-field terms of
+// order (K d)^2 that Schaffer's evanescent modes carry).
+double subharmonic_piston(double omega_i, double k_i, double omega_j, double k_j, double depth,
+                          double g = kStandardGravity);
+
 // What a regular wave of height H, period T in depth d is, and which theory describes it.
 struct WaveAssessment {
   double height = 0, period = 0, depth = 0;

@@ -37,6 +37,48 @@ double goring_position(const SolitaryPaddle& s, double tau, double& sech2) {
   return x;
 }
 
+// sum over pairs i < j of the first n components of coef[p(i, j)] term(i, j, s_i, c_i, s_j,
+// c_j), s = sin(angle), c = cos(angle), in blocks whose sines live on the stack: n sines per
+// block row, no allocation.
+template <class Angle, class Term>
+double pair_sum(std::size_t n, const std::vector<double>& coef, Angle angle, Term term) {
+  constexpr std::size_t kBlock = 128;
+  double si[kBlock], ci[kBlock], sj[kBlock], cj[kBlock];
+  double total = 0.0;
+  for (std::size_t i0 = 0; i0 < n; i0 += kBlock) {
+    const std::size_t ni = std::min(kBlock, n - i0);
+    for (std::size_t a = 0; a < ni; ++a) {
+      const double x = angle(i0 + a);
+      si[a] = std::sin(x);
+      ci[a] = std::cos(x);
+    }
+    for (std::size_t j0 = i0; j0 < n; j0 += kBlock) {
+      const std::size_t nj = std::min(kBlock, n - j0);
+      const double* sb = si;
+      const double* cb = ci;
+      if (j0 != i0) {
+        for (std::size_t b = 0; b < nj; ++b) {
+          const double x = angle(j0 + b);
+          sj[b] = std::sin(x);
+          cj[b] = std::cos(x);
+        }
+        sb = sj;
+        cb = cj;
+      }
+      for (std::size_t a = 0; a < ni; ++a) {
+        const std::size_t i = i0 + a;
+        // p(i, j) = row + j; for i = 0 the unsigned wrap of row = -1 is undone by + j (j >= 1).
+        const std::size_t row = i * n - i * (i + 1) / 2 - i - 1;
+        for (std::size_t b = (j0 == i0 ? a + 1 : 0); b < nj; ++b) {
+          const std::size_t j = j0 + b;
+          total += coef[row + j] * term(i, j, si[a], ci[a], sb[b], cb[b]);
+        }
+      }
+    }
+  }
+  return total;
+}
+
 }  // namespace
 
 double transfer_function(const PaddleGeometry& paddle, double k) {
@@ -90,6 +132,14 @@ double PaddleSignal::displacement(double t) const {
   }
   double x = 0.0;
   for (const auto& c : components) x += c.amplitude * std::sin(c.omega * t + c.phase);
+  if (pair_components > 1) {
+    x += pair_sum(
+        pair_components, pair_paddle,
+        [&](std::size_t i) { return components[i].omega * t + components[i].phase; },
+        [](std::size_t, std::size_t, double s1, double c1, double s2, double c2) {
+          return s1 * c2 - c1 * s2;  // sin(psi_i - psi_j)
+        });
+  }
   return x;
 }
 
@@ -103,6 +153,14 @@ double PaddleSignal::velocity(double t) const {
   }
   double v = 0.0;
   for (const auto& c : components) v += c.amplitude * c.omega * std::cos(c.omega * t + c.phase);
+  if (pair_components > 1) {
+    v += pair_sum(
+        pair_components, pair_paddle,
+        [&](std::size_t i) { return components[i].omega * t + components[i].phase; },
+        [&](std::size_t i, std::size_t j, double s1, double c1, double s2, double c2) {
+          return (components[i].omega - components[j].omega) * (c1 * c2 + s1 * s2);
+        });
+  }
   return v;
 }
 
@@ -117,6 +175,7 @@ double PaddleSignal::amplitude_bound() const {
   if (solitary) return soliton.stroke;
   double a = 0.0;
   for (const auto& c : components) a += std::abs(c.amplitude);
+  for (const double c : pair_paddle) a += std::abs(c);
   return a;
 }
 
@@ -134,6 +193,14 @@ double PaddleSignal::elevation(double t, double x) const {
   if (bound_second_harmonic != 0.0 && !target.empty()) {
     const auto& c = target.front();
     eta += bound_second_harmonic * std::cos(2.0 * (c.omega * t + c.phase - c.k * x));
+  }
+  if (pair_components > 1) {
+    eta += pair_sum(
+        pair_components, pair_surface,
+        [&](std::size_t i) { return target[i].omega * t + target[i].phase - target[i].k * x; },
+        [](std::size_t, std::size_t, double s1, double c1, double s2, double c2) {
+          return c1 * c2 + s1 * s2;  // cos(theta_i - theta_j)
+        });
   }
   return eta;
 }
@@ -198,6 +265,34 @@ PaddleSignal linear_paddle(const PaddleGeometry& paddle,
     s.components.push_back({c.amplitude / transfer_function(paddle, k), c.omega, c.phase});
     s.target.push_back({c.amplitude, c.omega, c.phase, k});
   }
+  return s;
+}
+
+PaddleSignal second_order_paddle(const PaddleGeometry& paddle,
+                                 const std::vector<SurfaceComponent>& surface, double g) {
+  if (paddle.type != PaddleGeometry::Type::Piston)
+    throw std::invalid_argument(
+        "second-order generation of a component set is implemented for pistons only (use "
+        "order 1 with a flap)");
+  PaddleSignal s = linear_paddle(paddle, surface, g);
+  const std::size_t n = surface.size();
+  if (n < 2) return s;
+  s.pair_components = n;
+  s.pair_paddle.reserve(n * (n - 1) / 2);
+  s.pair_surface.reserve(n * (n - 1) / 2);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const auto& a = s.target[i];
+      const auto& b = s.target[j];
+      if (a.omega == b.omega)
+        throw std::invalid_argument("second-order generation: components " + std::to_string(i) +
+                                    " and " + std::to_string(j) + " share the frequency " +
+                                    num(a.omega) + " rad/s");
+      const double aa = a.amplitude * b.amplitude;
+      s.pair_paddle.push_back(aa * subharmonic_piston(a.omega, a.k, b.omega, b.k, paddle.depth, g));
+      s.pair_surface.push_back(
+          aa * second_order_kernel(a.omega, a.k, b.omega, b.k, paddle.depth, false, g));
+    }
   return s;
 }
 

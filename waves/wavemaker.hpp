@@ -11,6 +11,7 @@
 // (1951) transfer function of the paddle (wave height over full stroke at the SWL).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -75,6 +76,14 @@ struct PaddleSignal {
   std::vector<TargetComponent> target;
   double bound_second_harmonic = 0.0;  // a2 [m] (regular order 2), else 0
 
+  // Second-order difference-frequency terms of a set of linear components (second_order_paddle):
+  // over the first `pair_components` components / target components, for every pair i < j at
+  // the packed index p = i n - i (i + 1) / 2 + j - i - 1, the paddle term
+  // pair_paddle[p] sin(psi_i - psi_j), psi = w t + phi, and the bound long wave
+  // pair_surface[p] cos(theta_i - theta_j), theta = psi - k x. Empty for first order.
+  std::size_t pair_components = 0;
+  std::vector<double> pair_paddle, pair_surface;
+
   double displacement(double t) const;
   double velocity(double t) const;
   // Target surface elevation at distance x [m] from the paddle's rest position, time t
@@ -111,6 +120,18 @@ struct SurfaceComponent {
 PaddleSignal linear_paddle(const PaddleGeometry& paddle,
                            const std::vector<SurfaceComponent>& surface,
                            double g = kStandardGravity);
+
+// The same components generated to second order (pistons only): the linear paddle signal plus,
+// for every pair of components, the subharmonic piston motion that makes their bound long wave
+// (subharmonic_piston, waves/theory.hpp), so that the sea leaves the paddle with its
+// second-order set-down and without the free long waves a first-order paddle sheds; the target
+// elevation carries the bound long wave (second_order_kernel). Sum-frequency terms are not
+// generated. n components give n (n - 1) / 2 pair terms, evaluated without allocation in
+// O(n^2) multiplications and O(n) sines per call. Throws std::invalid_argument for a flap or
+// two components of the same frequency.
+PaddleSignal second_order_paddle(const PaddleGeometry& paddle,
+                                 const std::vector<SurfaceComponent>& surface,
+                                 double g = kStandardGravity);
 
 // Surface elevation of linear components at a distance x from the paddle:
 // eta(x, t) = sum a_i cos(w_i t + phi_i - k_i x).
