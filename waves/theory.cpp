@@ -85,7 +85,10 @@ double subharmonic_piston(double wi, double ki, double wj, double kj, double d, 
   if (kdiff == 0.0)
     throw std::invalid_argument(
         "second-order pair: two components of the same frequency have no difference term");
-  return second_order_kernel(wi, ki, wj, kj, d, false, g) / (kdiff * d);
+  const PaddleGeometry piston{PaddleGeometry::Type::Piston, d, 0.0};
+  const double fi = transfer_function(piston, ki), fj = transfer_function(piston, kj);
+  return second_order_kernel(wi, ki, wj, kj, d, false, g) / (kdiff * d) -
+         (1.0 / fi - 1.0 / fj) / (2.0 * d);
 }
 
 WaveAssessment assess_regular_wave(double height, double period, double depth,

@@ -50,12 +50,18 @@ double subharmonic_flux(double omega_i, double k_i, double omega_j, double k_j, 
                         double g = kStandardGravity);
 
 // Subharmonic piston motion of the pair: X2 = P a_i a_j sin(psi_i - psi_j), psi = omega t + phi
-// (the paddle's phase of each component), with P = G- / ((k_i - k_j) d): the piston moves with
-// the depth-averaged velocity of the bound long wave, X2' = F cos(psi_i - psi_j) / d, so that
-// the volume it displaces is the bound wave's and no free long wave is left to make up the
-// difference (the long-wave, mass-flux form of second-order subharmonic generation; Sand 1982,
-// Schaffer 1996's theory reduces to it as the band narrows; it drops the near-field terms of
-// order (K d)^2 that Schaffer's evanescent modes carry).
+// (the paddle's phase of each component), from the volume the paddle must displace: the
+// water between the paddle and a section far away changes only by what crosses that section,
+// so to second order X2 d = int q2 dt - slow part of X1 eta1(0) (- the near field's excess of
+// slow second-order volume), q2 the bound wave's flux (subharmonic_flux). With the
+// progressive first-order field, X1 = a/F sin psi and eta1(0) = a cos psi (F the piston's
+// transfer function), this gives
+//   P = G- / ((k_i - k_j) d) - (1/F_i - 1/F_j) / (2 d),
+// the first term the bound wave's depth-averaged velocity (the long-wave, mass-flux form of
+// subharmonic generation; Sand 1982), exact as the band narrows. Left out (Schaffer 1996 keeps
+// them): the first-order evanescent modes' elevation at the paddle in X1 eta1(0) (in
+// quadrature; of order (k_i - k_j) d relative to P) and the near field's second-order volume;
+// both grow with the pair's separation (README, "Wavemakers").
 double subharmonic_piston(double omega_i, double k_i, double omega_j, double k_j, double depth,
                           double g = kStandardGravity);
 

@@ -127,8 +127,8 @@ PaddleSignal linear_paddle(const PaddleGeometry& paddle,
 // second-order set-down and without the free long waves a first-order paddle sheds; the target
 // elevation carries the bound long wave (second_order_kernel). Sum-frequency terms are not
 // generated. n components give n (n - 1) / 2 pair terms, evaluated without allocation in
-// O(n^2) multiplications and O(n) sines per call. Throws std::invalid_argument for a flap or
-// two components of the same frequency.
+// O(n^2) multiplications and about n + n^2 / 256 sines per call. Throws
+// std::invalid_argument for a flap or two components of the same frequency.
 PaddleSignal second_order_paddle(const PaddleGeometry& paddle,
                                  const std::vector<SurfaceComponent>& surface,
                                  double g = kStandardGravity);
