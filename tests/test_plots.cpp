@@ -349,5 +349,76 @@ TEST(Plots, BoundLongWaveScriptReadsKnownLongWaves) {
   EXPECT_TRUE(fs::exists(d / "out" / "bound_long_wave.png"));
 }
 
+// validation/wave_flume2d/irregular_long_wave.py on synthetic gauges: a sea of short waves over
+// a known long wave; the gauge that carries exactly the target's bound wave reads it (ratio 1,
+// no difference, correlation 1); one with a free long wave of the same RMS added, uncorrelated
+// with it, reads a difference as large as the bound wave.
+TEST(Plots, IrregularLongWaveScriptReadsKnownLongWaves) {
+  constexpr double kPi = std::numbers::pi;
+  std::string why;
+  if (!plots_possible(&why)) GTEST_SKIP() << "plot checks skipped: " << why;
+  const std::string python = find_plot_python();
+  const fs::path src(SWELL_SOURCE_DIR);
+  const fs::path d = fs::path(SWELL_BINARY_DIR) / "test_plots" / "irregular_long_wave";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const auto sea = [&](double t) {
+    double e = 0;
+    for (int i = 0; i < 12; ++i) e += 0.004 * std::cos(2 * kPi * (0.6 + 0.05 * i) * t + 0.7 * i);
+    return e;
+  };
+  // Long waves at 0.05-0.2 Hz: the bound one, and a free one on other frequencies.
+  const auto bound = [&](double t) {
+    return 0.001 * std::cos(2 * kPi * 0.05 * t + 0.3) + 0.0007 * std::cos(2 * kPi * 0.12 * t);
+  };
+  const auto free = [&](double t) {
+    return 0.001 * std::cos(2 * kPi * 0.08 * t + 1.1) + 0.0007 * std::cos(2 * kPi * 0.17 * t);
+  };
+  {
+    std::ofstream tgt(d / "target.csv");
+    tgt << "# synthetic\ntime [s],eta_2 [m],eta_bound_2 [m]\n";
+    for (int i = 0; i <= 8000; ++i) {
+      const double t = 0.01 * i;
+      tgt << t << "," << sea(t) + bound(t) << "," << bound(t) << "\n";
+    }
+  }
+  const auto run = [&](const std::string& name, double with_free) {
+    fs::create_directories(d / name);
+    std::ofstream g(d / name / "gauges_height.csv");
+    g << "# swell gauges\ntime [s],eta_a [m]\n";
+    for (int i = 0; i <= 8000; ++i) {
+      const double t = 0.01 * i;
+      g << t << "," << 0.4 + sea(t) + bound(t) + with_free * free(t) << "\n";
+    }
+  };
+  run("exact", 0.0);
+  run("free", 1.0);
+  const std::string cmd =
+      "'" + python + "' '" +
+      (src / "validation" / "wave_flume2d" / "irregular_long_wave.py").string() + "' --target '" +
+      (d / "target.csv").string() + "' --gauges eta_a:2 --window 10:70 '" + (d / "exact").string() +
+      "' '" + (d / "free").string() + "' -o '" + (d / "out").string() + "' > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream in(d / "out" / "irregular_long_wave.csv");
+  std::string line;
+  std::getline(in, line);  // header
+  std::map<std::string, std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
+    ASSERT_EQ(cells.size(), 9u) << line;
+    rows[cells[0]] = cells;
+  }
+  ASSERT_EQ(rows.size(), 2u);
+  // measured / bound (5), difference / bound (7), correlation (8).
+  EXPECT_NEAR(std::stod(rows["exact"][5]), 1.0, 0.03);
+  EXPECT_LT(std::stod(rows["exact"][7]), 0.05);
+  EXPECT_GT(std::stod(rows["exact"][8]), 0.99);
+  EXPECT_NEAR(std::stod(rows["free"][7]), 1.0, 0.1);
+  EXPECT_LT(std::stod(rows["free"][8]), 0.85);
+  EXPECT_TRUE(fs::exists(d / "out" / "irregular_long_wave.png"));
+}
+
 }  // namespace
 }  // namespace swell
