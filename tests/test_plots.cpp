@@ -284,6 +284,27 @@ TEST(Plots, BenchAndRunupScriptsWriteSvgWithUnitsAndLabels) {
   EXPECT_EQ(WEXITSTATUS(std::system(bad.c_str())), 2);
 }
 
+// The rows of a script's CSV table (header skipped) by their first cell; each must have `cells`
+// cells (an empty map, which the callers' size checks catch, if one has not).
+std::map<std::string, std::vector<std::string>> csv_rows_by_first_cell(const fs::path& file,
+                                                                       std::size_t cells) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);  // header
+  std::map<std::string, std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> row;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) row.push_back(c);
+    if (row.size() != cells) {
+      ADD_FAILURE() << file << ": " << row.size() << " cells, expected " << cells << ": " << line;
+      return {};
+    }
+    rows[row[0]] = row;
+  }
+  return rows;
+}
+
 // validation/wave_flume2d/bound_long_wave.py on synthetic gauges whose long waves are known:
 // the bound wave itself (ratio 1, nothing free), the bound wave of waves 10 % low (ratio 0.81,
 // 1 against the measured amplitudes) and the bound wave plus a free one as large (1 not bound).
@@ -327,25 +348,15 @@ TEST(Plots, BoundLongWaveScriptReadsKnownLongWaves) {
                           (d / "exact").string() + "' '" + (d / "low").string() + "' '" +
                           (d / "free").string() + "' -o '" + (d / "out").string() + "' > /dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  std::ifstream in(d / "out" / "bound_long_wave.csv");
-  std::string line;
-  std::getline(in, line);  // header
-  std::map<std::string, std::vector<std::string>> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ls(line);
-    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
-    ASSERT_EQ(cells.size(), 13u) << line;
-    rows[cells[0]] = cells;
-  }
+  const auto rows = csv_rows_by_first_cell(d / "out" / "bound_long_wave.csv", 13);
   ASSERT_EQ(rows.size(), 3u);
   // measured / bound (5), phase lag (6), not bound / bound (8), ratio to the measured a1 a2 (12).
-  EXPECT_NEAR(std::stod(rows["exact"][5]), 1.0, 0.01);
-  EXPECT_NEAR(std::stod(rows["exact"][6]), 0.0, 0.005);
-  EXPECT_NEAR(std::stod(rows["exact"][8]), 0.0, 0.01);
-  EXPECT_NEAR(std::stod(rows["low"][5]), 0.81, 0.02);
-  EXPECT_NEAR(std::stod(rows["low"][12]), 1.0, 0.02);
-  EXPECT_NEAR(std::stod(rows["free"][8]), 1.0, 0.02);
+  EXPECT_NEAR(std::stod(rows.at("exact")[5]), 1.0, 0.01);
+  EXPECT_NEAR(std::stod(rows.at("exact")[6]), 0.0, 0.005);
+  EXPECT_NEAR(std::stod(rows.at("exact")[8]), 0.0, 0.01);
+  EXPECT_NEAR(std::stod(rows.at("low")[5]), 0.81, 0.02);
+  EXPECT_NEAR(std::stod(rows.at("low")[12]), 1.0, 0.02);
+  EXPECT_NEAR(std::stod(rows.at("free")[8]), 1.0, 0.02);
   EXPECT_TRUE(fs::exists(d / "out" / "bound_long_wave.png"));
 }
 
@@ -399,24 +410,14 @@ TEST(Plots, IrregularLongWaveScriptReadsKnownLongWaves) {
       (d / "target.csv").string() + "' --gauges eta_a:2 --window 10:70 '" + (d / "exact").string() +
       "' '" + (d / "free").string() + "' -o '" + (d / "out").string() + "' > /dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  std::ifstream in(d / "out" / "irregular_long_wave.csv");
-  std::string line;
-  std::getline(in, line);  // header
-  std::map<std::string, std::vector<std::string>> rows;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ls(line);
-    for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
-    ASSERT_EQ(cells.size(), 9u) << line;
-    rows[cells[0]] = cells;
-  }
+  const auto rows = csv_rows_by_first_cell(d / "out" / "irregular_long_wave.csv", 9);
   ASSERT_EQ(rows.size(), 2u);
   // measured / bound (5), difference / bound (7), correlation (8).
-  EXPECT_NEAR(std::stod(rows["exact"][5]), 1.0, 0.03);
-  EXPECT_LT(std::stod(rows["exact"][7]), 0.05);
-  EXPECT_GT(std::stod(rows["exact"][8]), 0.99);
-  EXPECT_NEAR(std::stod(rows["free"][7]), 1.0, 0.1);
-  EXPECT_LT(std::stod(rows["free"][8]), 0.85);
+  EXPECT_NEAR(std::stod(rows.at("exact")[5]), 1.0, 0.03);
+  EXPECT_LT(std::stod(rows.at("exact")[7]), 0.05);
+  EXPECT_GT(std::stod(rows.at("exact")[8]), 0.99);
+  EXPECT_NEAR(std::stod(rows.at("free")[7]), 1.0, 0.1);
+  EXPECT_LT(std::stod(rows.at("free")[8]), 0.85);
   EXPECT_TRUE(fs::exists(d / "out" / "irregular_long_wave.png"));
 }
 

@@ -159,6 +159,10 @@ TEST(WaveTarget, CaseTargetAndBoundPart) {
   }
   EXPECT_EQ(rows, 25);
   EXPECT_GT(largest_bound, 1e-4);  // the pair's set-down is there
+  // A CSV into a folder that does not exist is refused before anything is computed.
+  opt.csv = (dir / "missing" / "t.csv").string();
+  EXPECT_THROW(run_waves_target(opt, out), std::invalid_argument);
+  opt.csv.clear();
   // A case without a wavemaker is refused, naming the file.
   {
     std::ofstream(dir / "still.yaml") << "dim: 2\ndp: 0.02\ntime: {end: 1}\nbodies:\n"

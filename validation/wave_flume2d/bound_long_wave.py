@@ -149,7 +149,17 @@ def main():
             "measured / bound", "phase lag [group periods]", "not bound [mm]",
             "not bound / bound", "fit residual RMS [mm]", "correlation",
             "first-order a1 / a2 vs target", "measured / bound of the measured a1 a2"]
-    with open(os.path.join(a.out, "bound_long_wave.csv"), "w", newline="") as f:
+    gauges = sorted({k[1] for k in series}, key=lambda s: float(s.split("_")[-1].rstrip("m")))
+    write_outputs(a.out, "bound_long_wave", head, table, gauges,
+                  [os.path.basename(os.path.normpath(r)) for r in a.runs], series,
+                  "low-passed [mm]")
+
+
+def write_outputs(out, stem, head, table, gauges, labels, series, ylabel):
+    """OUT/STEM.csv (and the table as Markdown on stdout) and OUT/STEM.png: per gauge, the
+    theory's bound wave and each run's long wave; series[(label, gauge)] = (t, measured, bound,
+    window or None)."""
+    with open(os.path.join(out, stem + ".csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(head)
         w.writerows(table)
@@ -161,26 +171,23 @@ def main():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    gauges = sorted({k[1] for k in series}, key=lambda s: float(s.split("_")[-1].rstrip("m")))
     fig, axes = plt.subplots(len(gauges), 1, figsize=(8, 2.4 * len(gauges)), sharex=True)
     axes = np.atleast_1d(axes)
     for ax, gname in zip(axes, gauges):
-        plotted_bound = False
-        for run in a.runs:
-            label = os.path.basename(os.path.normpath(run))
-            tu, eta_l, bound_i, (t0, t1) = series[(label, gname)]
-            if not plotted_bound:
-                ax.plot(tu, 1e3 * bound_i, "k--", lw=1.2, label="bound long wave (theory)")
-                ax.axvspan(t0, t1, color="0.92")
-                plotted_bound = True
-            ax.plot(tu, 1e3 * eta_l, lw=1.0, label=f"SPH {label}")
-        ax.set_ylabel(f"{gname}\nlow-passed [mm]")
+        for i, label in enumerate(labels):
+            tt, measured, bound, window = series[(label, gname)]
+            if i == 0:
+                ax.plot(tt, 1e3 * bound, "k--", lw=1.2, label="bound long wave (theory)")
+                if window:
+                    ax.axvspan(window[0], window[1], color="0.92")
+            ax.plot(tt, 1e3 * measured, lw=1.0, label=f"SPH {label}")
+        ax.set_ylabel(f"{gname}\n{ylabel}")
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=8, loc="upper left")
     axes[-1].set_xlabel("t [s]")
     fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "bound_long_wave.png"), dpi=120)
-    print("written:", os.path.join(a.out, "bound_long_wave.csv"), os.path.join(a.out, "bound_long_wave.png"))
+    fig.savefig(os.path.join(out, stem + ".png"), dpi=120)
+    print("written:", os.path.join(out, stem + ".csv"), os.path.join(out, stem + ".png"))
 
 
 if __name__ == "__main__":

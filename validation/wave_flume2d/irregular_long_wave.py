@@ -17,14 +17,13 @@ usage: irregular_long_wave.py --target target.csv --gauges eta_1L:1.94,eta_2L:3.
 `swell waves target --at`)
 """
 import argparse
-import csv
 import os
 import sys
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bound_long_wave import lowpass, read_csv  # noqa: E402
+from bound_long_wave import lowpass, read_csv, write_outputs  # noqa: E402
 
 
 def detrend(t, y):
@@ -80,40 +79,12 @@ def main():
             corr = np.corrcoef(e, b)[0, 1]
             table.append([label, name, f"{t0:g}-{t1:g}", f"{1e3 * rb:.2f}", f"{1e3 * rm:.2f}",
                           f"{rm / rb:.2f}", f"{1e3 * rd:.2f}", f"{rd / rb:.2f}", f"{corr:.2f}"])
-            series[(label, name)] = (tu[m], e, b)
+            series[(label, name)] = (tu[m], e, b, None)
     head = ["run", "gauge", "window [s]", "bound RMS [mm]", "measured long-wave RMS [mm]",
             "measured / bound", "difference RMS [mm]", "difference / bound", "correlation"]
-    with open(os.path.join(a.out, "irregular_long_wave.csv"), "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(head)
-        w.writerows(table)
-    print("| " + " | ".join(head) + " |")
-    print("|" + "---|" * len(head))
-    for r in table:
-        print("| " + " | ".join(r) + " |")
-
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(len(gauges), 1, figsize=(9, 2.2 * len(gauges)), sharex=True)
-    axes = np.atleast_1d(axes)
-    for ax, (name, _) in zip(axes, gauges):
-        first = True
-        for run in a.runs:
-            label = os.path.basename(os.path.normpath(run))
-            tt, e, b = series[(label, name)]
-            if first:
-                ax.plot(tt, 1e3 * b, "k--", lw=1.2, label="bound long wave (theory)")
-                first = False
-            ax.plot(tt, 1e3 * e, lw=1.0, label=f"SPH {label}")
-        ax.set_ylabel(f"{name}\nlong wave [mm]")
-        ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=8, loc="upper left")
-    axes[-1].set_xlabel("t [s]")
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "irregular_long_wave.png"), dpi=120)
-    print("written:", os.path.join(a.out, "irregular_long_wave.csv"),
-          os.path.join(a.out, "irregular_long_wave.png"))
+    write_outputs(a.out, "irregular_long_wave", head, table, [n for n, _ in gauges],
+                  [os.path.basename(os.path.normpath(r)) for r in a.runs], series,
+                  "long wave [mm]")
 
 
 if __name__ == "__main__":
