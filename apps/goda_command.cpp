@@ -49,6 +49,7 @@ std::vector<double> table_heights(const waves::GodaPressure& r) {
 }  // namespace
 
 void run_waves_goda(const WavesGodaOptions& opt, std::ostream& out) {
+  if (!opt.csv.empty()) require_output_folder(opt.csv, "--csv");
   waves::GodaInput in = opt.input;
   in.beta_deg = opt.beta;
   if (!opt.lambda.empty()) parse_lambda(opt.lambda, in);

@@ -139,6 +139,7 @@ std::string band_text(const wv::Band& band) {
 }  // namespace
 
 void run_waves_analyse(const WavesAnalyseOptions& opt, std::ostream& out) {
+  if (!opt.csv.empty()) require_output_folder(opt.csv, "--csv");
   if (opt.gauge.empty() && opt.reflection.empty())
     throw std::invalid_argument("waves analyse: give --gauge NAME and/or --reflection G1,G2,G3");
   require_positive(opt.period, "--period");

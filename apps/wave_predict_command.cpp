@@ -57,6 +57,7 @@ double at_time(const std::vector<double>& t, const std::vector<double>& v, doubl
 }  // namespace
 
 void run_waves_predict(const WavesPredictOptions& opt, std::ostream& out) {
+  if (!opt.csv.empty()) require_output_folder(opt.csv, "--csv");
   if (!(opt.depth > 0.0)) throw std::invalid_argument("--depth: a depth > 0 m is required");
   const waves::GaugeColumn record = waves::read_gauge_column(opt.file, opt.paddle);
   const std::vector<double> at = numbers(opt.at, "--at");

@@ -2,7 +2,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
-#include <filesystem>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -18,12 +17,7 @@ void run_waves_target(const WavesTargetOptions& opt, std::ostream& out) {
   if (!(opt.end > 0.0)) throw std::invalid_argument("--end: expected a time > 0 [s]");
   if (!(opt.every > 0.0)) throw std::invalid_argument("--every: expected an interval > 0 [s]");
   const std::vector<double> at = parse_number_list(opt.at, "--at");
-  if (!opt.csv.empty()) {
-    const std::filesystem::path folder = std::filesystem::path(opt.csv).parent_path();
-    if (!folder.empty() && !std::filesystem::is_directory(folder))
-      throw std::invalid_argument("--csv: the folder " + folder.string() +
-                                  " does not exist (create it first)");
-  }
+  if (!opt.csv.empty()) require_output_folder(opt.csv, "--csv");
   const CaseSpec spec = load_case_file(opt.case_file, opt.sets);
   const BodySpec* body = nullptr;
   for (const auto& b : spec.bodies)

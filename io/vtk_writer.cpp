@@ -46,6 +46,13 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
 }
 
+void require_output_folder(const std::string& path, const std::string& option) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+    throw std::invalid_argument(option + ": the folder " + folder.string() +
+                                " does not exist (create it first)");
+}
+
 template <int D>
 void write_vtp(const std::string& path, const ParticleSet<D>& ps,
                const std::vector<double>& pressure, ParticleFilter filter,

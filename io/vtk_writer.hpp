@@ -56,4 +56,8 @@ class PvdSeries {
 // Writes `text` to `path` through `path.tmp` and a rename, so readers never see half a file.
 void write_file_atomically(const std::string& path, const std::string& text);
 
+// Bad input, found before any work: throws std::invalid_argument naming `option` when the folder
+// `path` would be written into does not exist (a bare file name writes into the current folder).
+void require_output_folder(const std::string& path, const std::string& option);
+
 }  // namespace swell

@@ -706,6 +706,18 @@ TEST(WavesAnalyseCommand, BadInputExitsTwo) {
       swell_command("waves analyse " + file.string() + " --gauge H1 --from 50 --to 60");
   EXPECT_EQ(window.code, 2) << window.output;
   EXPECT_NE(window.output.find("window"), std::string::npos) << window.output;
+  // Every `swell waves` command refuses a --csv into a folder that does not exist (exit 2,
+  // naming the folder) before it computes anything.
+  const std::string missing_folder = (dir / "no_such_folder").string();
+  for (const std::string& cmd :
+       {"waves analyse " + file.string() + " --gauge H1 --period 6.2832",
+        "waves predict " + file.string() + " --paddle H1 --depth 0.5 --at 1",
+        std::string("waves goda 1 8 10")}) {
+    const CommandResult r = swell_command(cmd + " --csv " + missing_folder + "/out.csv");
+    EXPECT_EQ(r.code, 2) << cmd << "\n" << r.output;
+    EXPECT_NE(r.output.find("no_such_folder"), std::string::npos) << cmd << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(missing_folder)) << cmd;
+  }
   // An error found late (a segment longer than the record) prints no partial report.
   const CommandResult segment =
       swell_command("waves analyse " + file.string() + " --gauge H1 --segment 100");

@@ -7,8 +7,10 @@
 #   validation/lobovsky2d/wall_models.sh [-d DP] [-t THREADS] [-e END] [-o OUT] [VARIANT ...]
 #
 # VARIANT: dbc, mdbc, dbc_shift, mdbc_shift (shifting near walls too: mode full),
-# dbc_shift_nb, mdbc_shift_nb (mode nobound: not within the support of a wall); default: all
-# six. DP defaults to the case's
+# dbc_shift_nb, mdbc_shift_nb (mode nobound: not within the support of a wall); the wall's
+# tangential condition: mdbc_freeslip, mdbc_noslip (physics.boundary.slip), mdbc_laminar,
+# dbc_laminar (water's laminar viscosity instead of the artificial); default: the first six.
+# DP defaults to the case's
 # 0.004 m; END to the manifest's 1.5 s. Cost here (2 cores, 2 threads): about 5-8 min per
 # variant at dp 4 mm, 1 min at dp 1 cm. SWELL names the swell binary (default: build/swell of
 # this source tree, else swell on PATH).
@@ -22,7 +24,7 @@ while getopts "d:t:e:o:h" opt; do
     t) threads="$OPTARG" ;;
     e) end="$OPTARG" ;;
     o) out="$OPTARG" ;;
-    *) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+    *) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
@@ -43,9 +45,13 @@ for v in "${variants[@]}"; do
       --set "physics.shifting={model: fickian, mode: nobound}") ;;
     mdbc_shift_nb) sets=(--set physics.boundary.model=mdbc
       --set "physics.shifting={model: fickian, mode: nobound}") ;;
+    mdbc_freeslip | mdbc_noslip) sets=(--set physics.boundary.model=mdbc
+      --set "physics.boundary.slip=${v#mdbc_}") ;;
+    mdbc_laminar | dbc_laminar) sets=(--set "physics.boundary.model=${v%_laminar}"
+      --set "physics.viscosity={model: laminar, nu: 1.0e-6}") ;;
     *)
       echo "wall_models.sh: unknown variant '$v' (dbc, mdbc, dbc_shift, mdbc_shift," \
-        "dbc_shift_nb, mdbc_shift_nb)" >&2
+        "dbc_shift_nb, mdbc_shift_nb, mdbc_freeslip, mdbc_noslip, mdbc_laminar, dbc_laminar)" >&2
       exit 2
       ;;
   esac
