@@ -309,6 +309,45 @@ TEST(WaveSecondOrder, KernelsAgainstStokesSetDownAndMassConservation) {
   EXPECT_THROW(subharmonic_piston(5.0, k1, 5.0, k1, d, g), std::invalid_argument);
 }
 
+// The kernels at finite separation against the published form, written out independently here:
+// Sharma & Dean's (1981) sum and difference kernels as Forristall (2000, J. Phys. Oceanogr.
+// 30:1931) writes them, R = k tanh(k d), per unordered pair (so halved). And the subharmonic
+// piston term P with its second part, the progressive waves' X1 eta1 volume (1/F_i - 1/F_j)/2d,
+// F the piston's transfer function from its own formula: flipping that part's sign moves P by
+// 4 % for the flume case's pair (0.65 / 0.80 Hz in 0.4 m).
+double forristall_kernel(double ki, double kj, double d, bool sum) {
+  const double ri = ki * std::tanh(ki * d), rj = kj * std::tanh(kj * d);
+  const double si = std::sqrt(ri), sj = std::sqrt(rj);
+  const double s = sum ? 1.0 : -1.0, km = std::abs(ki + s * kj), sp = si + s * sj;
+  const double num = sp * (sj * (ki * ki - ri * ri) + s * si * (kj * kj - rj * rj)) +
+                     2 * sp * sp * (ki * kj - s * ri * rj);
+  const double dd = num / (sp * sp - km * std::tanh(km * d));
+  return 0.5 * ((dd - (ki * kj - s * ri * rj)) / std::sqrt(ri * rj) + ri + rj);
+}
+
+TEST(WaveSecondOrder, KernelsAndPistonAgainstThePublishedForm) {
+  const double d = 0.4;
+  for (const auto& [fi, fj] :
+       {std::pair{0.65, 0.80}, {0.70, 0.72}, {0.50, 1.50}, {0.30, 2.00}, {1.20, 0.90}}) {
+    const double wi = 2 * kPi * fi, wj = 2 * kPi * fj;
+    const double ki = k_bisection(wi, d), kj = k_bisection(wj, d);
+    for (const bool sum : {false, true}) {
+      const double ref = forristall_kernel(ki, kj, d, sum);
+      EXPECT_NEAR(second_order_kernel(wi, ki, wj, kj, d, sum, g), ref, 1e-9 * std::abs(ref))
+          << fi << " / " << fj << (sum ? " sum" : " difference");
+    }
+  }
+  const double wi = 2 * kPi * 0.65, wj = 2 * kPi * 0.80;
+  const double ki = k_bisection(wi, d), kj = k_bisection(wj, d);
+  const auto piston_f = [&](double k) {
+    return 2 * (std::cosh(2 * k * d) - 1) / (std::sinh(2 * k * d) + 2 * k * d);
+  };
+  const double first = forristall_kernel(ki, kj, d, false) / ((ki - kj) * d);
+  const double second = -(1 / piston_f(ki) - 1 / piston_f(kj)) / (2 * d);
+  EXPECT_NEAR(subharmonic_piston(wi, ki, wj, kj, d, g), first + second, 1e-9 * std::abs(first));
+  EXPECT_GT(std::abs(second), 0.01 * std::abs(first));  // 2 % of the first here: present, tested
+}
+
 // The second-order signal of a component set: the paddle and the target elevation are the
 // linear ones plus the pair terms summed directly here (over 300 components, so the evaluation's
 // blocks of 128 and their edges are crossed); the velocity is the displacement's derivative.
