@@ -93,15 +93,14 @@ TEST(WaveCaseKeys, RegularPistonAndFlap) {
       "flume.yaml");
   EXPECT_EQ(irr2.bodies[1].motion.paddle->pair_components, 50u);
   EXPECT_EQ(irr2.bodies[1].motion.paddle->pair_paddle.size(), 50u * 49u / 2u);
-  EXPECT_NE(irr2.bodies[1].motion.wave_label.find("bound long wave, 1225 pairs"),
-            std::string::npos)
+  EXPECT_NE(irr2.bodies[1].motion.wave_label.find("bound long wave, 1225 pairs"), std::string::npos)
       << irr2.bodies[1].motion.wave_label;
   EXPECT_TRUE(irr2.bodies[1].motion.wave_notes.empty());
   // Many components at order 2: the pair count's cost is noted (the run header prints it).
-  const CaseSpec irr600 = parse_case_text(
-      flume_case("{type: wave, wave: irregular, depth: 0.3, hs: 0.03, tp: 1.2, "
-                 "components: 600, order: 2}"),
-      "flume.yaml");
+  const CaseSpec irr600 =
+      parse_case_text(flume_case("{type: wave, wave: irregular, depth: 0.3, hs: 0.03, tp: 1.2, "
+                                 "components: 600, order: 2}"),
+                      "flume.yaml");
   ASSERT_EQ(irr600.bodies[1].motion.wave_notes.size(), 1u);
   EXPECT_NE(irr600.bodies[1].motion.wave_notes[0].find("179700 pair terms"), std::string::npos)
       << irr600.bodies[1].motion.wave_notes[0];
