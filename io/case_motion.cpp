@@ -376,7 +376,7 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
     if (order != 2) return;
     const long pairs = static_cast<long>(n) * (n - 1) / 2;
     label << ", order 2 (bound long wave, " << pairs << " pairs)";
-    if (n > 500)
+    if (n >= 500)
       spec.wave_notes.push_back(
           "order 2 with " + std::to_string(n) + " components: " + std::to_string(pairs) +
           " pair terms every step (" + (spec.absorption ? "twice, with absorption; " : "") +

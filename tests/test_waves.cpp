@@ -312,7 +312,7 @@ TEST(WaveSecondOrder, KernelsAgainstStokesSetDownAndMassConservation) {
 // The kernels at finite separation against the published form, written out independently here:
 // Sharma & Dean's (1981) sum and difference kernels as Forristall (2000, J. Phys. Oceanogr.
 // 30:1931) writes them, R = k tanh(k d), per unordered pair (so halved). And the subharmonic
-// piston term P with its second part, the progressive waves' X1 eta1 volume (1/F_i - 1/F_j)/2d,
+// piston term P with its second part, the progressive waves' X1 eta1 volume -(1/F_i - 1/F_j)/2d,
 // F the piston's transfer function from its own formula: flipping that part's sign moves P by
 // 4 % for the flume case's pair (0.65 / 0.80 Hz in 0.4 m).
 double forristall_kernel(double ki, double kj, double d, bool sum) {
