@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -10,6 +9,7 @@
 #include "apps/gauge_set.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/provenance.hpp"
+#include "io/vtk_writer.hpp"
 
 namespace swell {
 namespace {
@@ -100,8 +100,7 @@ int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadat
   if (opt.output.empty()) {
     out << csv.str();
   } else {
-    std::ofstream f(opt.output);
-    if (!(f << csv.str())) throw std::runtime_error("cannot write " + opt.output);
+    write_file_atomically(opt.output, csv.str());
   }
   return rows;
 }
@@ -129,6 +128,7 @@ Eigen::Vector3d parse_vector_option(const std::string& text, const std::string& 
 }
 
 int run_probe(const ProbeOptions& opt, std::ostream& out) {
+  if (!opt.output.empty()) require_output_folder(opt.output, "-o");
   const std::string path = find_run_file(opt.out_dir);
   const RunMetadata meta = read_metadata(path);
   if (meta.dim == 2) return probe_dim<2>(opt, path, meta, out);

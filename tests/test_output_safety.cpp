@@ -168,6 +168,15 @@ TEST(OutputSafety, KillInsideSnapshotWriteLosesNoEarlierSnapshot) {
   };
   const std::string probe_full = probe(full);
   ASSERT_EQ(std::count(probe_full.begin(), probe_full.end(), '\n'), 9 + 1);  // + the header
+  // -o into a folder that does not exist: exit 2 naming it, before reading the run; nothing made.
+  {
+    const fs::path missing = root / "no_such_folder";
+    const auto r = run_swell(
+        {"probe", full.string(), "--at", "0.02,0.01", "-o", (missing / "p.csv").string()}, root);
+    EXPECT_EQ(r.rc, 2) << r.err;
+    EXPECT_TRUE(contains(r.err, "no_such_folder")) << r.err;
+    EXPECT_FALSE(fs::exists(missing));
+  }
 
   for (const std::string point : {"snapshot-data", "snapshot-index"}) {
     for (const int n : {3, 6}) {  // the first checkpoint comes with snapshot 2
