@@ -110,7 +110,8 @@ void write_text(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-std::vector<double> parse_number_list(const std::string& text, const std::string& option) {
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      bool zero_allowed) {
   std::vector<double> out;
   std::stringstream in(text);
   std::string item;
@@ -118,10 +119,12 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
     try {
       std::size_t used = 0;
       const double v = std::stod(item, &used);
-      if (used != item.size() || !(v > 0.0)) throw std::invalid_argument(item);
+      if (used != item.size() || !(zero_allowed ? v >= 0.0 : v > 0.0))
+        throw std::invalid_argument(item);
       out.push_back(v);
     } catch (const std::exception&) {
-      throw std::invalid_argument(option + ": '" + item + "' is not a number > 0");
+      throw std::invalid_argument(option + ": '" + item + "' is not a number " +
+                                  (zero_allowed ? ">= 0" : "> 0"));
     }
   }
   if (out.empty()) throw std::invalid_argument(option + ": expected numbers, got '" + text + "'");

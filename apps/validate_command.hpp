@@ -74,6 +74,7 @@ struct ValidateSummary {
 ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log);
 
 // "0.004,0.002" -> {0.004, 0.002}; throws std::invalid_argument naming `option`.
-std::vector<double> parse_number_list(const std::string& text, const std::string& option);
+std::vector<double> parse_number_list(const std::string& text, const std::string& option,
+                                      bool zero_allowed = false);
 
 }  // namespace swell

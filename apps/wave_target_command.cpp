@@ -16,7 +16,7 @@ namespace swell {
 void run_waves_target(const WavesTargetOptions& opt, std::ostream& out) {
   if (!(opt.end > 0.0)) throw std::invalid_argument("--end: expected a time > 0 [s]");
   if (!(opt.every > 0.0)) throw std::invalid_argument("--every: expected an interval > 0 [s]");
-  const std::vector<double> at = parse_number_list(opt.at, "--at");
+  const std::vector<double> at = parse_number_list(opt.at, "--at", true);  // 0: at the paddle
   if (!opt.csv.empty()) require_output_folder(opt.csv, "--csv");
   const CaseSpec spec = load_case_file(opt.case_file, opt.sets);
   const BodySpec* body = nullptr;
@@ -45,7 +45,9 @@ void run_waves_target(const WavesTargetOptions& opt, std::ostream& out) {
       << provenance_text(capture_provenance(), "# ") << "time [s]";
   for (const double x : at) csv << ",eta_" << x << " [m],eta_bound_" << x << " [m]";
   csv << "\n";
-  const long n = std::lround(opt.end / opt.every);
+  // Times i * every up to --end, never past it (a rounding margin of 1e-9 intervals keeps an
+  // end that is a whole number of intervals, e.g. 10 at 0.01).
+  const long n = static_cast<long>(std::floor(opt.end / opt.every + 1e-9));
   for (long i = 0; i <= n; ++i) {
     const double t = i * opt.every, tau = t - m.start;
     double ramp = tau >= 0.0 && t <= m.stop ? 1.0 : 0.0;

@@ -4,9 +4,11 @@
 // the sampling interval (never a point sample), and `size` needs `normal`.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -77,6 +79,73 @@ TEST(SensorFace, HydrostaticWallPressureIsExact2D) {
 }
 TEST(SensorFace, HydrostaticWallPressureIsExact3D) {
   check_floor_sensor<3>(0.02);
+}
+
+// The face average of the plain Shepard ratio at the face's points (what a face read before
+// the wetness weight): the reference the weighted reading is checked against.
+template <int D, class K>
+double plain_shepard_face(const ParticleSet<D>& ps, const std::vector<double>& p, const K& kernel,
+                          const std::vector<Vec<D>>& pts, const Vec<D>& n, double off) {
+  double sum = 0.0;
+  for (const auto& x : pts) {
+    const double v = probe_pressure(ps, p, kernel, Vec<D>(x + off * n));
+    if (!std::isnan(v)) sum += v;
+  }
+  return sum / static_cast<double>(pts.size());
+}
+
+// A face on the side wall x = 0 just above the water: the plain Shepard ratio carries the top
+// row's pressure rho0 g dp/2 up to a kernel support above the surface; the face reads it faded
+// by the wetness weight, falling with height to exactly 0 a support above the water. A face
+// under water, even with the fluid held 1.5 dp off the wall (DBC's gap), is not weighted.
+template <int D>
+void check_face_wetness(double dp) {
+  std::vector<double> p;
+  const ParticleSet<D> ps = hydrostatic_block<D>(dp, p);
+  const double h = std::sqrt(double(D)) * dp;
+  const WendlandC2<D> kernel(h);
+  Vec<D> n = Vec<D>::Zero(), g = Vec<D>::Zero(), c = Vec<D>::Constant(0.1);
+  n[0] = 1.0;
+  g[D - 1] = -kG;
+  c[0] = 0.0;
+  std::vector<std::uint32_t> scratch;
+  const double p_top = kRho0 * kG * 0.5 * dp;
+  double previous = std::numeric_limits<double>::infinity();
+  for (const double k : {0.25, 0.5, 1.0, 1.5}) {
+    c[D - 1] = kLevel + k * h;
+    const auto pts = face_points<D>(c, n, dp, dp);
+    const double face = face_pressure(ps, p, kernel, pts, n, h, kRho0, g, scratch);
+    const double plain = plain_shepard_face(ps, p, kernel, pts, n, h);
+    EXPECT_GT(plain, 0.3 * p_top) << D << "D, " << k << " h above the water";
+    EXPECT_GE(face, 0.0) << D << "D, " << k << " h";
+    EXPECT_LT(face, (k < 0.5 ? 0.8 : 0.5) * plain) << D << "D, " << k << " h";
+    EXPECT_LT(face, previous) << D << "D, " << k << " h";
+    if (k >= 1.0) EXPECT_LT(face, 0.1 * p_top) << D << "D, " << k << " h";
+    previous = face;
+  }
+  c[D - 1] = kLevel + 2.0 * h + dp;  // beyond the support of every face point
+  EXPECT_EQ(face_pressure(ps, p, kernel, face_points<D>(c, n, dp, dp), n, h, kRho0, g, scratch),
+            0.0);
+  // Submerged, the first fluid column removed: the fluid starts 1.5 dp off the wall.
+  ParticleSet<D> gap;
+  std::vector<double> pg;
+  for (std::size_t j = 0; j < ps.size(); ++j)
+    if (ps.pos[j][0] > dp) {
+      gap.add(ps.pos[j], Vec<D>::Zero(), kRho0, ps.mass[j], Role::Fluid, 0);
+      pg.push_back(p[j]);
+    }
+  c[D - 1] = 0.1;
+  const auto pts = face_points<D>(c, n, 0.03, dp);
+  const double face = face_pressure(gap, pg, kernel, pts, n, h, kRho0, g, scratch);
+  EXPECT_NEAR(face, plain_shepard_face(gap, pg, kernel, pts, n, h), 1e-9 * face) << D << "D";
+  EXPECT_NEAR(face, kRho0 * kG * (kLevel - 0.1), 0.02 * kRho0 * kG * (kLevel - 0.1)) << D << "D";
+}
+
+TEST(SensorFace, PointsAboveTheWaterFadeToZero2D) {
+  check_face_wetness<2>(0.01);
+}
+TEST(SensorFace, PointsAboveTheWaterFadeToZero3D) {
+  check_face_wetness<3>(0.02);
 }
 
 // The written value is the mean of the per-step values weighted by dt over the interval, and

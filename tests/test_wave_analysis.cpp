@@ -739,5 +739,22 @@ TEST(WavesAnalyseCommand, BadInputExitsTwo) {
   EXPECT_EQ(spacing.output.find("Kr = "), std::string::npos) << spacing.output;
 }
 
+// `swell waves H T d`: second-order generation on a flap is refused (exit 2, naming the
+// option, no report), as a case file's `order: 2` on a flap is; order 1 on a flap and order 2
+// on a piston report.
+TEST(WavesTheoryCommand, SecondOrderFlapExitsTwo) {
+  const CommandResult flap2 = swell_command("waves 0.05 1.6 0.6 --paddle flap --order 2");
+  EXPECT_EQ(flap2.code, 2) << flap2.output;
+  EXPECT_NE(flap2.output.find("--order 2"), std::string::npos) << flap2.output;
+  EXPECT_NE(flap2.output.find("pistons only"), std::string::npos) << flap2.output;
+  EXPECT_EQ(flap2.output.find("wave length"), std::string::npos) << flap2.output;
+  const CommandResult flap1 = swell_command("waves 0.05 1.6 0.6 --paddle flap --order 1");
+  EXPECT_EQ(flap1.code, 0) << flap1.output;
+  EXPECT_NE(flap1.output.find("transfer function H/S"), std::string::npos) << flap1.output;
+  const CommandResult piston2 = swell_command("waves 0.05 1.6 0.6 --order 2");
+  EXPECT_EQ(piston2.code, 0) << piston2.output;
+  EXPECT_NE(piston2.output.find("2nd-order (Madsen) term"), std::string::npos) << piston2.output;
+}
+
 }  // namespace
 }  // namespace swell::waves

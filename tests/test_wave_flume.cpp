@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -175,6 +176,27 @@ TEST(WaveTarget, CaseTargetAndBoundPart) {
   }
   EXPECT_EQ(rows, 25);
   EXPECT_GT(largest_bound, 1e-4);  // the pair's set-down is there
+  // At the paddle's rest face (--at 0), and never past --end: 2.5 intervals give t = 0, 0.4, 0.8.
+  opt.at = "0";
+  opt.end = 1.0;
+  opt.every = 0.4;
+  std::ostringstream at0;
+  run_waves_target(opt, at0);
+  std::vector<double> times;
+  std::istringstream in0(at0.str());
+  while (std::getline(in0, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+    times.push_back(std::stod(line));
+    const double e = std::stod(line.substr(line.find(',') + 1)), tau = times.back() - 0.5;
+    const double s = std::clamp(tau / 2.0, 0.0, 1.0);
+    EXPECT_NEAR(e, tau > 0.0 ? s * s * (3 - 2 * s) * full.elevation(tau, 0.0) : 0.0, 1e-8);
+  }
+  EXPECT_EQ(times, (std::vector<double>{0.0, 0.4, 0.8}));
+  opt.at = "-1";
+  EXPECT_THROW(run_waves_target(opt, out), std::invalid_argument);
+  opt.at = "0.5,2";
+  opt.end = 6.0;
+  opt.every = 0.25;
   // A CSV into a folder that does not exist is refused before anything is computed.
   opt.csv = (dir / "missing" / "t.csv").string();
   EXPECT_THROW(run_waves_target(opt, out), std::invalid_argument);
