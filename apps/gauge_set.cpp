@@ -18,7 +18,8 @@ const char* kind_comment(GaugeSpec::Kind k) {
     case GaugeSpec::Kind::Pressure:
       return "pressure probes: Shepard-normalised kernel interpolation of fluid pressure [Pa]; "
              "empty where not sampled, nan where dry; sensor faces (size): face average of "
-             "the pressure extrapolated to the wall, mean over the interval up to the row's time";
+             "the pressure extrapolated to the wall, points above the water faded to 0, mean "
+             "over the interval up to the row's time";
     case GaugeSpec::Kind::Height:
       return "water height: free-surface elevation [m] where the kernel-interpolated density "
              "along the vertical line falls below rho0/2";

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "apps/gauge_set.hpp"
+#include "io/case_file.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
@@ -39,10 +40,17 @@ int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadat
   GaugeSpec g;
   g.name = "probe";
   g.at = opt.at;
+  if (opt.size && opt.kind != "pressure")
+    throw std::invalid_argument("--size is for --kind pressure (a sensor face)");
   if (opt.kind == "pressure") {
     g.kind = GaugeSpec::Kind::Pressure;
     if (opt.normal) g.normal = opt.normal->normalized();
     g.offset = opt.offset;
+    if (opt.size) {  // a sensor face, as a case's `size` (needs `normal`)
+      if (!opt.normal) throw std::invalid_argument("--size (a sensor face) needs --normal");
+      if (!(*opt.size > 0.0)) throw std::invalid_argument("--size: expected a length > 0 [m]");
+      g.size = opt.size;
+    }
   } else if (opt.kind == "velocity") {
     g.kind = GaugeSpec::Kind::Velocity;
   } else if (opt.kind == "height") {
@@ -66,6 +74,14 @@ int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadat
   ctx.params.rho0 = meta.rho0;
   ctx.params.c0 = meta.c0;
   ctx.up_axis = D - 1;
+  // Gravity (a sensor face's hydrostatic extrapolation and wetness): the run's case, else
+  // 9.81 m/s^2 down the last axis (the axis the height and runup gauges here take as up).
+  ctx.params.gravity = Eigen::Vector3d::Zero();
+  ctx.params.gravity[D - 1] = -9.81;
+  try {
+    ctx.params.gravity = parse_case_text(meta.case_text, meta.case_file).gravity;
+  } catch (const std::exception&) {
+  }
 
   std::ostringstream csv;
   csv << "# swell probe of " << path << " (case " << meta.case_name << ")\n"

@@ -15,6 +15,7 @@ struct ProbeOptions {
   Eigen::Vector3d at = Eigen::Vector3d::Zero();
   std::optional<Eigen::Vector3d> normal;  // pressure: sample at at + offset * normal
   std::optional<double> offset;
+  std::optional<double> size;         // pressure: a sensor face of this size (needs `normal`)
   std::optional<Eigen::Vector3d> to;  // runup: the line's upper end (`at` is its lower end)
   std::optional<double> swl;          // runup: still-water level
   std::string output;                 // CSV file; empty: write to `out`

@@ -139,6 +139,10 @@ int main(int argc, char** argv) {
   probe->add_option("--normal", probe_normal,
                     "pressure: wall normal nx,ny[,nz]; sample at at + offset*normal");
   probe->add_option("--offset", probe_offset, "distance along the normal (default h)");
+  std::optional<double> probe_size;
+  probe->add_option("--size", probe_size,
+                    "pressure: a sensor face of this diameter (3D) / length (2D) [m] on the wall "
+                    "at --at, needs --normal (the face average, as a case gauge's size)");
   probe->add_option("-o,--out", probe_out, "CSV file (default: standard output)");
 
   swell::CompareOptions cmp;
@@ -339,6 +343,7 @@ int main(int argc, char** argv) {
       }
       if (!probe_to.empty()) opt.to = swell::parse_vector_option(probe_to, "--to");
       opt.swl = probe_swl;
+      opt.size = probe_size;
       opt.output = probe_out;
       const int rows = swell::run_probe(opt, std::cout);
       if (!probe_out.empty())

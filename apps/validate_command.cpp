@@ -119,9 +119,9 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
     try {
       std::size_t used = 0;
       const double v = std::stod(item, &used);
-      if (used != item.size() || !(zero_allowed ? v >= 0.0 : v > 0.0))
+      if (used != item.size() || !std::isfinite(v) || !(zero_allowed ? v >= 0.0 : v > 0.0))
         throw std::invalid_argument(item);
-      out.push_back(v);
+      out.push_back(v + 0.0);  // -0 as 0
     } catch (const std::exception&) {
       throw std::invalid_argument(option + ": '" + item + "' is not a number " +
                                   (zero_allowed ? ">= 0" : "> 0"));

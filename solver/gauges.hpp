@@ -135,18 +135,23 @@ std::vector<Vec<D>> face_points(const Vec<D>& c, const Vec<D>& n, double size, d
 }
 
 // Pressure on a sensor face: at each face point x_s, the fluid pressure at q = x_s + offset n
-// (the Shepard ratio p_S(q) of probe_pressure) extrapolated back to the wall hydrostatically
-// and weighted by the point's wetness w,
-//   p(x_s) = w [p_S(q) - rho0 offset g . n],   w = min(1, sum_j W(q - x_j) V_j / (1/2)),
+// (the Shepard ratio p_S(q) of probe_pressure, fluid particles only) extrapolated back to the
+// wall hydrostatically and weighted by the point's wetness w,
+//   p(x_s) = w [p_S(q) - rho0 offset g . n],
 // then averaged over the face, points with no fluid in reach counting 0, as a transducer reads
-// air. The kernel sum is about 1 inside the fluid and 1/2 at a flat free surface; where less
-// than half the kernel holds water the point lies above the surface, and the plain Shepard
-// ratio would carry the surface particles' pressure up to a kernel support above the water
-// (the caisson's face read 85 Pa 6 cm above the still-water level, 1.2 cm above the highest
-// run-up). w fades such points to 0
-// continuously; submerged points, whose sum exceeds 1/2 (also behind DBC's wall gap), read as
-// the plain ratio. One scan of the particles per call (those within reach of the face).
-// `scratch` holds the indices of that scan (reused between calls: no allocation once sized).
+// air. The weight tells a point above the water from one under it:
+//   w = min(1, sum_j W(q - x_j) V_j / (1/2))  where the fluid's kernel centroid lies below q
+//       (along g), the sum over fluid and wall particles;   w = 1 otherwise.
+// Above the water the fluid lies below the point and fills less than the half of the kernel it
+// fills at a flat free surface, and the plain Shepard ratio would carry the surface particles'
+// pressure up to a kernel support above the water (the caisson's face 2-4 cm above the still
+// water read 71 Pa in still water): w fades such points to 0 continuously, a wall beside them
+// adding little (its particles lie at least offset + dp/2 from q). Under water the kernel sum
+// can fall below 1/2 too, in a wall corner whose fluid is held off both walls (DBC's 1.5 dp
+// gap after a surge: 0.4 at Lobovsky's floor sensor), but there the fluid lies above or beside
+// the point, so w = 1; the walls in the sum complete the kernel under a ceiling. One scan of
+// the particles per call (those within reach of the face). `scratch` holds the indices of that
+// scan, fluid first (reused between calls: no allocation once sized).
 inline constexpr double kFaceWetKernelSum = 0.5;
 
 template <int D, class K>
@@ -161,27 +166,36 @@ double face_pressure(const ParticleSet<D>& ps, const std::vector<double>& pressu
     lo = lo.cwiseMin(x + offset * n);
     hi = hi.cwiseMax(x + offset * n);
   }
+  const auto near = [&](std::size_t j) {
+    return !((ps.pos[j].array() < lo.array() - s) || (ps.pos[j].array() > hi.array() + s)).any();
+  };
   scratch.clear();
-  for (std::size_t j = 0; j < ps.size(); ++j) {
-    if (ps.role[j] != Role::Fluid) continue;
-    if (((ps.pos[j].array() < lo.array() - s) || (ps.pos[j].array() > hi.array() + s)).any())
-      continue;
-    scratch.push_back(static_cast<std::uint32_t>(j));
-  }
+  for (std::size_t j = 0; j < ps.size(); ++j)
+    if (ps.role[j] == Role::Fluid && near(j)) scratch.push_back(static_cast<std::uint32_t>(j));
+  const std::size_t n_fluid = scratch.size();
+  for (std::size_t j = 0; j < ps.size(); ++j)
+    if (ps.role[j] != Role::Fluid && near(j)) scratch.push_back(static_cast<std::uint32_t>(j));
   const double correction = -rho0 * offset * g.dot(n);
   double sum = 0.0;
   for (const auto& x : points) {
     const Vec<D> q = x + offset * n;
-    double sum_p = 0.0, sum_w = 0.0;
-    for (const std::uint32_t j : scratch) {
-      const double r = (q - ps.pos[j]).norm();
+    double sum_p = 0.0, sum_w = 0.0, sum_wall = 0.0, below = 0.0;
+    for (std::size_t k = 0; k < scratch.size(); ++k) {
+      const std::uint32_t j = scratch[k];
+      const Vec<D> d = ps.pos[j] - q;
+      const double r = d.norm();
       if (!(r < s)) continue;
       const double wv = kernel.w(r) * ps.mass[j] / ps.rho[j];
-      sum_p += pressure[j] * wv;
-      sum_w += wv;
+      if (k < n_fluid) {
+        sum_p += pressure[j] * wv;
+        sum_w += wv;
+        below += wv * d.dot(g);
+      } else {
+        sum_wall += wv;
+      }
     }
     if (!(sum_w > 0.0)) continue;
-    const double wet = std::min(1.0, sum_w / kFaceWetKernelSum);
+    const double wet = below > 0.0 ? std::min(1.0, (sum_w + sum_wall) / kFaceWetKernelSum) : 1.0;
     sum += (sum_p / sum_w + correction) * wet;
   }
   return sum / static_cast<double>(points.size());

@@ -14,6 +14,8 @@
 #include "apps/probe_command.hpp"
 #include "io/case_file.hpp"
 #include "io/hdf5_file.hpp"
+#include "solver/gauges.hpp"
+#include "solver/physics/kernels.hpp"
 #include "tests/case_run.hpp"
 
 namespace swell {
@@ -127,6 +129,35 @@ TEST(Probe, ReproducesTheInRunGauge) {
   }
   // The wall probe sees the column's pressure at the start (rho0 g (2a - 0.01) ~ 1 kPa).
   EXPECT_GT(post.front().second, 500.0);
+
+  // A sensor face (--size, as a case gauge's `size`): at each snapshot, the face average of
+  // the run's own function (solver/gauges.hpp face_pressure) on that snapshot's particles,
+  // walls included (they enter the face's wetness).
+  opt.size = 0.02;
+  std::ostringstream face_csv;
+  ASSERT_EQ(run_probe(opt, face_csv), 6);
+  const auto faces = data_rows(face_csv.str());
+  const std::string path = (d / "restart_case.h5").string();
+  const RunMetadata m = read_metadata(path);
+  const auto snaps = list_snapshots(path);
+  ASSERT_EQ(faces.size(), snaps.size());
+  for (std::size_t k = 0; k < snaps.size(); ++k) {
+    const auto s = read_snapshot<2>(path, snaps[k]);
+    ParticleSet<2> ps;
+    for (std::size_t i = 0; i < s.pos.size(); ++i)
+      ps.add(s.pos[i], s.vel[i], s.rho[i], s.mass[i], static_cast<Role>(s.type[i]), s.body[i]);
+    const Vec<2> n(1.0, 0.0), c(0.0, 0.01), g(0.0, -9.81);
+    std::vector<std::uint32_t> scratch;
+    const double expect = with_kernel<2>(kernel_from_name(m.kernel), m.h, [&](const auto& kernel) {
+      return face_pressure(ps, s.p, kernel, face_points<2>(c, n, 0.02, m.dp), n, m.h, m.rho0, g,
+                           scratch);
+    });
+    EXPECT_EQ(faces[k].first, post[k].first);
+    EXPECT_NEAR(faces[k].second, expect, 1e-8 * std::abs(expect) + 1e-9) << "at t = " << s.time;
+  }
+  EXPECT_GT(faces.front().second, 500.0);
+  opt.normal.reset();  // a face needs its normal
+  EXPECT_THROW(run_probe(opt, face_csv), std::invalid_argument);
 }
 
 TEST(Hdf5Layout, RunFileHoldsSnapshotsAndMetadata) {

@@ -192,6 +192,17 @@ TEST(WaveTarget, CaseTargetAndBoundPart) {
     EXPECT_NEAR(e, tau > 0.0 ? s * s * (3 - 2 * s) * full.elevation(tau, 0.0) : 0.0, 1e-8);
   }
   EXPECT_EQ(times, (std::vector<double>{0.0, 0.4, 0.8}));
+  // An end a whole number of intervals away, not exact in binary (0.3 / 0.1 = 2.9999...96):
+  // its last row is kept.
+  opt.end = 0.3;
+  opt.every = 0.1;
+  std::ostringstream tenths;
+  run_waves_target(opt, tenths);
+  int n_rows = 0;
+  std::istringstream in1(tenths.str());
+  while (std::getline(in1, line))
+    if (!line.empty() && line[0] != '#' && line[0] != 't') ++n_rows;
+  EXPECT_EQ(n_rows, 4);
   opt.at = "-1";
   EXPECT_THROW(run_waves_target(opt, out), std::invalid_argument);
   opt.at = "0.5,2";
