@@ -118,6 +118,16 @@ TEST(Metrics, ImpulseMeanAndFilteredPeak) {
   for (std::size_t i = 0; i < twice.t.size(); ++i)
     if (twice.t[i] >= 3.0 && twice.t[i] <= 5.0) twice.v[i] *= 2.0;
   EXPECT_NEAR(compute_metrics(twice, ref, req).mean_error, 1.0, 1e-3);
+  // A window past the end of the records (a run ending at t = 8 against [3, 10]): the mean over
+  // what both cover, [3, 8]: the plateau 0.7 over [3, 6], 0 after, i.e. 0.7 * 3 / 5 = 0.42 (was
+  // divided by the window's 7: 0.3).
+  req.mean_window = Window{3.0, 10.0};
+  const GaugeMetrics past = compute_metrics(p, ref, req);
+  EXPECT_NEAR(past.mean, 0.42, 1e-3);
+  EXPECT_NEAR(past.ref_mean, 0.42, 1e-3);
+  // A window no record reaches: no mean (NaN), not 0.
+  req.mean_window = Window{9.0, 10.0};
+  EXPECT_TRUE(std::isnan(compute_metrics(p, ref, req).mean));
 }
 
 TEST(Metrics, ArrivalTimeIsTheInterpolatedFirstCrossing) {

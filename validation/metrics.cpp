@@ -335,11 +335,17 @@ GaugeMetrics compute_metrics(const Series& s, const Series& ref, const MetricReq
     m.ref_impulse = integral(ref, req.impulse_window);
     m.impulse_error = relative(m.impulse, m.ref_impulse);
   }
-  if (req.mean) {
-    const double span = req.mean_window.t1 - req.mean_window.t0;
-    m.mean = integral(s, req.mean_window) / span;
-    m.ref_mean = integral(ref, req.mean_window) / span;
-    m.mean_error = relative(m.mean, m.ref_mean);
+  if (req.mean && !s.t.empty() && !ref.t.empty()) {
+    // Over the part of the window both records cover (a run that ends inside the window is
+    // averaged over what it has, and the reference over the same times), not divided by a
+    // span the records do not reach.
+    const Window w{std::max({req.mean_window.t0, s.t.front(), ref.t.front()}),
+                   std::min({req.mean_window.t1, s.t.back(), ref.t.back()})};
+    if (w.t1 > w.t0) {
+      m.mean = integral(s, w) / (w.t1 - w.t0);
+      m.ref_mean = integral(ref, w) / (w.t1 - w.t0);
+      m.mean_error = relative(m.mean, m.ref_mean);
+    }
   }
   if (req.peak && req.filter > 0.0) {
     m.filtered_peak = boxcar_peak(s, req.peak_window, req.filter);
