@@ -136,7 +136,7 @@ struct MetricRequest {
   double min_reference = 1e-12;    // relative errors skip smaller reference values
   bool impulse = false;            // integral over impulse_window, against the reference's
   Window impulse_window;
-  bool mean = false;  // time mean over mean_window (integral / duration) where both records cover it
+  bool mean = false;  // time mean over mean_window (integral / duration), where both cover it
   Window mean_window;
   double filter = 0.0;  // > 0: the peak of the boxcar average of this width too
   // > 0: first-harmonic amplitude and phase at this period (normalised time units) by least
