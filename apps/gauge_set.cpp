@@ -32,8 +32,9 @@ const char* kind_comment(GaugeSpec::Kind k) {
     case GaugeSpec::Kind::Runup:
       return "runup: elevation of the highest point of the slope line where the fluid kernel "
              "sum dp/2 off the surface (h = sqrt(dim) dp) reaches 0.3 rho0, above swl where the "
-             "gauge gives one, else absolute [m]; sampling: max, the largest value since the "
-             "previous row";
+             "gauge gives one, else absolute [m]; edge: connected, the tongue attached to the "
+             "sea (splashes do not count); sampling: max, the largest value since the previous "
+             "row";
   }
   return "";
 }
@@ -62,7 +63,8 @@ double runup_level(const GaugeSpec& g, const GaugeContext& ctx, const ParticleSe
   const double h_gauge = std::sqrt(static_cast<double>(D)) * p.dp;
   const double z = with_kernel<D>(p.kernel, h_gauge, [&](const auto& kernel) {
     return runup_elevation(ps, kernel, Vec<D>(g.from.template head<D>()),
-                           Vec<D>(g.to.template head<D>()), ctx.up_axis, 0.5 * p.dp, p.dp, p.rho0);
+                           Vec<D>(g.to.template head<D>()), ctx.up_axis, 0.5 * p.dp, p.dp, p.rho0,
+                           0.3, g.connected);
   });
   return g.swl ? z - *g.swl : z;
 }

@@ -372,6 +372,9 @@ const std::vector<Key>& key_table() {
      "still-water level the runup is given above"},
     {"gauges[]", "sampling", "runup", "choice", "instant", "", "instant | max",
      "runup at each row's time, or the largest within each interval"},
+    {"gauges[]", "edge", "runup", "choice", "highest", "", "highest | connected",
+     "the highest wet point of the line, or the edge of the tongue attached to the sea (a wet "
+     "stretch cut off by a dry one longer than the kernel support, a splash, does not count)"},
 
     // --- damping ---
     {"damping[]", "name", "", "name", "required", "", "non-empty, unique", "zone name"},

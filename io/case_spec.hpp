@@ -83,6 +83,7 @@ struct GaugeSpec {
   Eigen::Vector3d from = Eigen::Vector3d::Zero(), to = Eigen::Vector3d::Zero();
   std::optional<double> swl;
   bool max = false;
+  bool connected = false;  // `edge: connected`: the tongue attached to the sea, not splashes
   double every = 0.0;  // sampling interval [s]; 0: output.gauge_every
   int line = 0;
 };

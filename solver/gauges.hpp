@@ -325,7 +325,11 @@ double water_height_integral(const ParticleSet<D>& ps, const K& kernel, const Ve
 // its edge (the last particle + dp/2; test_gauges measures it).
 // The highest wet sample is found walking down from the top of the fluid along the line; the
 // crossing to the dry sample above it is interpolated linearly. Returns from[up] if no sample
-// is wet, to[up] if the top is.
+// is wet, to[up] if the top is. With `connected`, the edge of the tongue attached to the sea
+// instead: the walk goes on down to `from`, and a wet stretch that a dry one longer than the
+// kernel's support separates from the water below it (a splash thrown up the slope, a droplet
+// left behind) does not count; a shorter dry stretch (a hole in a one-row film) does not cut
+// the tongue. It costs the walk of the whole line, not only of its top.
 //
 // Candidates are the fluid particles within offset + support of the line, kept with their
 // coordinate along it in a per-thread buffer (no allocation once grown: `sampling: max`
@@ -333,7 +337,7 @@ double water_height_integral(const ParticleSet<D>& ps, const K& kernel, const Ve
 template <int D, class K>
 double runup_elevation(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& from,
                        const Vec<D>& to, int up, double ds, double dp, double rho0,
-                       double fraction = 0.3) {
+                       double fraction = 0.3, bool connected = false) {
   if (up < 0 || up >= D) throw std::invalid_argument("runup_elevation: up axis out of range");
   if (!(ds > 0.0) || !(dp > 0.0))
     throw std::invalid_argument("runup_elevation: ds and dp must be positive");
@@ -388,17 +392,30 @@ double runup_elevation(const ParticleSet<D>& ps, const K& kernel, const Vec<D>& 
   const long k_top = static_cast<long>(std::ceil(s_start / ds));
   double s_prev = std::min(length, static_cast<double>(k_top) * ds), rho_prev = density_at(s_prev);
   if (rho_prev >= threshold) return to[up];
+  // The edge of the current wet stretch (NaN: none yet, or cut off by a long dry stretch), and
+  // the length of the dry stretch walked since the last wet sample.
+  double edge = std::numeric_limits<double>::quiet_NaN(), dry = 0.0;
+  bool was_wet = false;
   for (long k = k_top - 1; k >= 0; --k) {
     const double s = static_cast<double>(k) * ds;
     const double rho = density_at(s);
-    if (rho >= threshold) {
+    const bool wet = rho >= threshold;
+    if (wet && !was_wet && std::isnan(edge)) {
       const double s_wet = s + (s_prev - s) * (rho - threshold) / (rho - rho_prev);
-      return z0 + s_wet * t[up];
+      if (!connected) return z0 + s_wet * t[up];
+      edge = s_wet;
     }
+    if (wet) {
+      dry = 0.0;
+    } else if (!std::isnan(edge)) {
+      dry += s_prev - s;
+      if (dry > support) edge = std::numeric_limits<double>::quiet_NaN();  // detached
+    }
+    was_wet = wet;
     s_prev = s;
     rho_prev = rho;
   }
-  return z0;
+  return std::isnan(edge) ? z0 : z0 + edge * t[up];
 }
 
 // Fluid load on a boundary body: force and moment in 3 components in both 2D and 3D (2D: only

@@ -1461,7 +1461,7 @@ TEST(CaseFileGauges, HeightLevelDefinition) {
 TEST(CaseFileGauges, RunupLineSwlAndSampling) {
   const CaseSpec spec = parse_case_text(
       with_gauges("  - {name: R, kind: runup, from: [0.2, 0], to: [0.8, 0.3], swl: 0.1, "
-                  "sampling: max}\n"
+                  "sampling: max, edge: connected}\n"
                   "  - {name: R2, kind: runup, from: [0.2, 0], to: [0.8, 0.3]}\n"),
       kLabel);
   ASSERT_EQ(spec.gauges.size(), 2u);
@@ -1474,6 +1474,8 @@ TEST(CaseFileGauges, RunupLineSwlAndSampling) {
   EXPECT_TRUE(r.max);
   EXPECT_FALSE(spec.gauges[1].swl.has_value());
   EXPECT_FALSE(spec.gauges[1].max);
+  EXPECT_TRUE(r.connected);
+  EXPECT_FALSE(spec.gauges[1].connected);  // default: edge: highest
   EXPECT_EQ(std::string(gauge_kind_name(r.kind)), "runup");
 }
 
@@ -1489,6 +1491,12 @@ TEST(CaseFileGaugeErrors, RunupBadKeys) {
   EXPECT_TRUE(ThrowsCaseError(
       with_gauges("  - {name: R, kind: runup, from: [0.2, 0], to: [0.8, 0.3], sampling: mean}\n"),
       8, {"gauges[0].sampling", "instant (the runup at each row's time) or max", "'mean'"}));
+  EXPECT_TRUE(ThrowsCaseError(
+      with_gauges("  - {name: R, kind: runup, from: [0.2, 0], to: [0.8, 0.3], edge: top}\n"), 8,
+      {"gauges[0].edge", "highest", "connected", "'top'"}));
+  EXPECT_TRUE(ThrowsCaseError(with_gauges("  - {name: H, kind: height, at: [0.1, 0], edge: "
+                                          "connected}\n"),
+                              8, {"gauges[0].edge", "runup"}));
   EXPECT_TRUE(ThrowsCaseError(
       with_gauges("  - {name: R, kind: runup, from: [0.2, 0], to: [0.8, 0.3], at: [0, 0]}\n"), 8,
       {"gauges[0].at", "runup gauges take no 'at'"}));

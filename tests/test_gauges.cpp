@@ -275,6 +275,50 @@ TEST(RunupGauge, LoneParticleDryLineWetTopAndBadLines) {
   EXPECT_THROW(runup_elevation(ps, kernel, from, to, 2, 0.5 * dp, dp, rho), std::invalid_argument);
 }
 
+// `edge: connected`: a 3-row layer to s = 0.3 and a splash (a 2-row patch of 4 dp) at s =
+// 0.5-0.54 further up. The highest wet point is the splash's edge; the connected tongue ends
+// at the layer's edge. A hole in the layer shorter than the kernel's support (one particle
+// column missing from a one-row film) does not cut the tongue; a gap longer than it does.
+TEST(RunupGauge, ConnectedEdgeIgnoresSplashes) {
+  const double dp = 0.01, rho = 1000.0, beta = std::atan(1.0 / 5.0);
+  const WendlandC2<2> kernel(std::sqrt(2.0) * dp);
+  const Vec<2> t(std::cos(beta), std::sin(beta)), n(-std::sin(beta), std::cos(beta));
+  const Vec<2> from = -0.05 * t, to = 1.0 * t;
+  ParticleSet<2> ps = slope_layer(beta, 3, 0.3, dp, rho);
+  const double tongue = runup_elevation(ps, kernel, from, to, 1, 0.5 * dp, dp, rho);
+  EXPECT_NEAR(runup_elevation(ps, kernel, from, to, 1, 0.5 * dp, dp, rho, 0.3, true), tongue,
+              1e-12);  // without a splash both rules agree
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 2; ++j)
+      ps.add((0.5 + (i + 0.5) * dp) * t + ((j + 0.5) * dp) * n, Vec<2>::Zero(), rho,
+             rho * dp * dp, Role::Fluid, 0);
+  const double highest = runup_elevation(ps, kernel, from, to, 1, 0.5 * dp, dp, rho);
+  EXPECT_NEAR(highest / std::sin(beta), 0.54, 0.25 * dp);
+  EXPECT_NEAR(runup_elevation(ps, kernel, from, to, 1, 0.5 * dp, dp, rho, 0.3, true), tongue,
+              1e-12);
+  // A one-row film to s = 0.4 with one particle missing at s ~ 0.2: still one tongue.
+  ParticleSet<2> film = slope_layer(beta, 1, 0.4, dp, rho), holed;
+  for (std::size_t j = 0; j < film.size(); ++j) {
+    const double sj = film.pos[j].dot(t);
+    if (film.role[j] == Role::Fluid && std::abs(sj - 0.205) < 0.4 * dp) continue;
+    holed.add(film.pos[j], Vec<2>::Zero(), rho, film.mass[j], film.role[j], 0);
+  }
+  ASSERT_EQ(holed.size() + 1, film.size());
+  const double z_film = runup_elevation(holed, kernel, from, to, 1, 0.5 * dp, dp, rho, 0.3, true);
+  EXPECT_NEAR(z_film / std::sin(beta), 0.4, 0.25 * dp);
+  // Five columns missing (a dry stretch longer than the support, 2.83 dp): cut at the gap.
+  ParticleSet<2> cut;
+  for (std::size_t j = 0; j < film.size(); ++j) {
+    const double sj = film.pos[j].dot(t);
+    if (film.role[j] == Role::Fluid && sj > 0.2 && sj < 0.25) continue;
+    cut.add(film.pos[j], Vec<2>::Zero(), rho, film.mass[j], film.role[j], 0);
+  }
+  const double z_cut = runup_elevation(cut, kernel, from, to, 1, 0.5 * dp, dp, rho, 0.3, true);
+  EXPECT_NEAR(z_cut / std::sin(beta), 0.2, 0.25 * dp);
+  EXPECT_NEAR(runup_elevation(cut, kernel, from, to, 1, 0.5 * dp, dp, rho) / std::sin(beta), 0.4,
+              0.25 * dp);
+}
+
 // 3D: a layer on a slope, uniform across y, the line in the plane y = 0.05.
 TEST(RunupGauge, LayerOnASlopeIn3D) {
   const double dp = 0.01, rho = 1000.0, beta = std::atan(1.0 / 4.0), s_end = 0.2;
