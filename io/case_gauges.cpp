@@ -254,13 +254,8 @@ void GaugeReader::read_runup(const YAML::Node& node, const std::string& path,
            "interval, evaluated every step)");
     gauge.max = m == "max";
   }
-  if (auto v = find(node, "edge")) {
-    const std::string m = text(*v, child(path, "edge"));
-    expect(m == "highest" || m == "connected", *v, child(path, "edge"),
-           "highest (the highest wet point of the line) or connected (the edge of the water "
-           "tongue attached to the sea: splashes thrown up the slope do not count)");
-    gauge.connected = m == "connected";
-  }
+  if (auto v = find(node, "edge"))  // the highest wet point, or the tongue attached to the sea
+    gauge.connected = choice(*v, child(path, "edge"), {"highest", "connected"}) == "connected";
 }
 
 }  // namespace

@@ -84,7 +84,7 @@ struct GaugeSpec {
   std::optional<double> swl;
   bool max = false;
   bool connected = false;  // `edge: connected`: the tongue attached to the sea, not splashes
-  double every = 0.0;  // sampling interval [s]; 0: output.gauge_every
+  double every = 0.0;      // sampling interval [s]; 0: output.gauge_every
   int line = 0;
 };
 

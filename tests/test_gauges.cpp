@@ -290,8 +290,8 @@ TEST(RunupGauge, ConnectedEdgeIgnoresSplashes) {
               1e-12);  // without a splash both rules agree
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 2; ++j)
-      ps.add((0.5 + (i + 0.5) * dp) * t + ((j + 0.5) * dp) * n, Vec<2>::Zero(), rho,
-             rho * dp * dp, Role::Fluid, 0);
+      ps.add((0.5 + (i + 0.5) * dp) * t + ((j + 0.5) * dp) * n, Vec<2>::Zero(), rho, rho * dp * dp,
+             Role::Fluid, 0);
   const double highest = runup_elevation(ps, kernel, from, to, 1, 0.5 * dp, dp, rho);
   EXPECT_NEAR(highest / std::sin(beta), 0.54, 0.25 * dp);
   EXPECT_NEAR(runup_elevation(ps, kernel, from, to, 1, 0.5 * dp, dp, rho, 0.3, true), tongue,
