@@ -78,14 +78,19 @@ int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadat
   // 9.81 m/s^2 down the last axis (the axis the height and runup gauges here take as up).
   ctx.params.gravity = Eigen::Vector3d::Zero();
   ctx.params.gravity[D - 1] = -9.81;
+  std::string gravity_note;
   try {
     ctx.params.gravity = parse_case_text(meta.case_text, meta.case_file).gravity;
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {  // said in the CSV header, not fatal
+    gravity_note = std::string(
+                       "# gravity: 9.81 m/s^2 down the last axis (the run's case could "
+                       "not be read again: ") +
+                   e.what() + ")\n";
   }
 
   std::ostringstream csv;
   csv << "# swell probe of " << path << " (case " << meta.case_name << ")\n"
-      << provenance_text(capture_provenance(), "# ");
+      << provenance_text(capture_provenance(), "# ") << gravity_note;
   csv << "time [s]";
   for (const auto& c : gauge_columns(g, D)) csv << ',' << c;
   csv << '\n';

@@ -169,12 +169,17 @@ double face_pressure(const ParticleSet<D>& ps, const std::vector<double>& pressu
   const auto near = [&](std::size_t j) {
     return !((ps.pos[j].array() < lo.array() - s) || (ps.pos[j].array() > hi.array() + s)).any();
   };
+  // One scan: the fluid in `scratch`, the walls in a per-thread buffer appended after it (no
+  // allocation once both have grown).
+  static thread_local std::vector<std::uint32_t> walls;
   scratch.clear();
-  for (std::size_t j = 0; j < ps.size(); ++j)
-    if (ps.role[j] == Role::Fluid && near(j)) scratch.push_back(static_cast<std::uint32_t>(j));
+  walls.clear();
+  for (std::size_t j = 0; j < ps.size(); ++j) {
+    if (!near(j)) continue;
+    (ps.role[j] == Role::Fluid ? scratch : walls).push_back(static_cast<std::uint32_t>(j));
+  }
   const std::size_t n_fluid = scratch.size();
-  for (std::size_t j = 0; j < ps.size(); ++j)
-    if (ps.role[j] != Role::Fluid && near(j)) scratch.push_back(static_cast<std::uint32_t>(j));
+  scratch.insert(scratch.end(), walls.begin(), walls.end());
   const double correction = -rho0 * offset * g.dot(n);
   double sum = 0.0;
   for (const auto& x : points) {
