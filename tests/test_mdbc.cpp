@@ -520,11 +520,11 @@ StillTankResult run_still_tank(double dp, double t_end, const std::string& bound
 
 // mDBC: the floor's wall particles carry the fluid's pressure at their depth within 1 %, and
 // the lowest fluid row stays within 0.6 dp of its initial height dp/2. Both are printed for
-// DBC beside it (not asserted). Against rho0 g d the fluid itself reads ~1.5 % high on this
-// lattice (h = 1.41 dp; the same with DBC, and at dp / 2): the discrete pressure gradient of
-// the symmetric form falls short of the continuous one by about that much, so a balanced
-// column needs that much more pressure; the kernel gradient correction (not yet built) is what
-// removes it. The wall-vs-rho0 g d figure is printed, and bounded at 3 %.
+// DBC beside it (not asserted). Against rho0 g d the fluid itself reads ~1.3 % high here
+// (h = 1.41 dp; the same with DBC, and at dp / 2): part of it is the symmetric gradient's
+// lattice sum, 0.992 at this h, so a balanced column needs more pressure (README, Wall loads:
+// at dp / 2 with coefh 1.5 it reads +0.8 %). The wall-vs-rho0 g d figure is printed, and
+// bounded at 3 %.
 TEST(MdbcRun, StillTank2DWallPressureAndGap) {
   const double dp = 0.02;
   const auto dbc = run_still_tank<2>(dp, 10.0, "dbc");

@@ -13,6 +13,8 @@ crest has had 1.15 times the linear shallow-water travel time 2 X0 / sqrt(g d) t
 
 The runup gauge R (sampling: max, above the still-water level) lies along the beach from its toe
 to its top; the maximum of its column is the maximum runup R (validation/synolakis/runup_table.py).
+R_connected is the same gauge with `edge: connected` (the edge of the tongue attached to the sea,
+splashes cut off further up not counted); runup_table.py reads R.
 """
 import argparse
 import math
@@ -106,6 +108,7 @@ bodies:
     shape: {{box: {{min: [{f(g['paddle'][1] + 0.5 * dp)}, 0], max: [{f(x_end)}, {f(d)}]}}}}
 gauges:
   - {{name: R, kind: runup, from: [{f(g['x_toe'])}, 0], to: [{f(g['x_top'])}, {f(g['top'])}], swl: {f(d)}, sampling: max}}
+  - {{name: R_connected, kind: runup, from: [{f(g['x_toe'])}, 0], to: [{f(g['x_top'])}, {f(g['top'])}], swl: {f(d)}, sampling: max, edge: connected}}
   - {{name: eta_toe, kind: height, at: [{f(g['x_toe'] - 0.5 * d)}, 0]}}
   - {{name: eta_mid, kind: height, at: [{f(0.5 * (g['paddle'][1] + g['x_toe']))}, 0]}}
 output: {{every: {f(t_end / 20)}, vtk: false, hdf5: true, gauge_every: 0.02}}
