@@ -246,7 +246,10 @@ void GaugeSet<D>::sample(double time, const ParticleSet<D>& ps, const std::vecto
         row_[e.first_column + k] = values[k];
         present_[e.first_column + k] = true;
       }
-      while (e.next <= time + 1e-12) e.next += e.every;
+      if (e.spec.every_step)  // due again at the next step's time, not at this one's again
+        e.next = time + 2e-12;
+      else
+        while (e.next <= time + 1e-12) e.next += e.every;
       any = true;
     }
     if (any) files_[f]->write_row(time, row_, present_);

@@ -99,7 +99,13 @@ GaugeSpec GaugeReader::read_gauge(const YAML::Node& node, const std::string& pat
   gauge.name = gauge_name(require(node, path, "name"), child(path, "name"));
   const auto positive = [](double v) { return v > 0.0; };
   if (auto v = find(node, "every")) {
-    gauge.every = number_if(*v, child(path, "every"), positive, "a number > 0");
+    if (v->IsScalar() && v->Scalar() == "step") {
+      gauge.every_step = true;
+    } else {
+      const bool ok = v->IsScalar() && YAML::convert<double>::decode(*v, gauge.every) &&
+                      std::isfinite(gauge.every) && positive(gauge.every);
+      expect(ok, *v, child(path, "every"), "a number > 0, or step (a row after every step)");
+    }
   }
   switch (gauge.kind) {
     case GaugeSpec::Kind::Pressure:

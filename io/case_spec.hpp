@@ -85,6 +85,9 @@ struct GaugeSpec {
   bool max = false;
   bool connected = false;  // `edge: connected`: the tongue attached to the sea, not splashes
   double every = 0.0;      // sampling interval [s]; 0: output.gauge_every
+  // `every: step`: a row after every step (the raw series; a sensor face's row is then its value
+  // at that step, a runup maximum the step's value); `every` stays 0.
+  bool every_step = false;
   int line = 0;
 };
 

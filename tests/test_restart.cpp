@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -93,6 +94,73 @@ TEST(Restart, MissingCheckpointIsAClearError) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("no checkpoint"), std::string::npos) << e.what();
   }
+}
+
+// `every: step` writes a gauge's raw series, a row after every step; a sensor face's interval
+// means (the same face with an `every`) are the dt-weighted means of that series over their
+// intervals; a restart neither repeats nor drops a row.
+TEST(SensorFace, EveryStepWritesTheRawSeriesTheIntervalMeansAverage) {
+  std::string text = case_text(0.03);
+  const std::string faces =
+      "  - {name: S_raw, kind: pressure, at: [0.0, 0.01], normal: [1, 0], size: 0.01, every: "
+      "step}\n"
+      "  - {name: S, kind: pressure, at: [0.0, 0.01], normal: [1, 0], size: 0.01}\n";
+  text.insert(text.find("output:"), faces);
+  std::string half = text;
+  half.replace(half.find("end: 0.03"), 9, "end: 0.015");
+  const fs::path a = fresh_dir("every_step"), b = fresh_dir("every_step_split");
+  const RunSummary sum = run(text, a, false, 2);
+  run(half, b, false, 1);
+  run(text, b, true, 2);
+  // Rows of gauges_pressure.csv: time, then the columns P0, S_raw, S (empty where not due).
+  const auto rows = [](const std::string& csv) {
+    std::vector<std::vector<std::string>> r;
+    std::istringstream in(csv);
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+      std::vector<std::string> cells;
+      std::string cell;
+      std::istringstream ls(line);
+      while (std::getline(ls, cell, ',')) cells.push_back(cell);
+      while (cells.size() < 4) cells.emplace_back();
+      r.push_back(cells);
+    }
+    return r;
+  };
+  const auto ra = rows(read_text(a / "gauges_pressure.csv"));
+  EXPECT_EQ(ra, rows(read_text(b / "gauges_pressure.csv")));  // the restart: the same rows
+  std::vector<double> t, raw;
+  int means = 0;
+  double acc = 0.0, acc_t = 0.0, t_prev = 0.0;
+  for (const auto& r : ra) {
+    ASSERT_FALSE(r[2].empty()) << "a row without S_raw at t = " << r[0];
+    const double ti = std::stod(r[0]), v = std::stod(r[2]);
+    if (!t.empty()) {  // the step ending at ti
+      ASSERT_GT(ti, t.back());
+      acc += (ti - t.back()) * v;
+      acc_t += ti - t.back();
+    }
+    t.push_back(ti);
+    raw.push_back(v);
+    if (r[3].empty()) continue;
+    const double mean = std::stod(r[3]);
+    if (ti == 0.0) {
+      EXPECT_EQ(mean, v);  // t = 0: both the instant's value
+    } else {
+      ASSERT_GT(acc_t, 0.0);
+      EXPECT_NEAR(mean, acc / acc_t, 1e-6 * std::abs(mean) + 1e-3)
+          << "interval (" << t_prev << ", " << ti << "]";
+      ++means;
+    }
+    acc = acc_t = 0.0;
+    t_prev = ti;
+  }
+  EXPECT_EQ(static_cast<long>(raw.size()), sum.steps + 1);  // t = 0 and every step
+  EXPECT_EQ(means, 3);                                      // t = 0.01, 0.02, 0.03
+  // The raw series moves within an interval (else the check above would be empty).
+  EXPECT_GT(*std::max_element(raw.begin(), raw.end()) - *std::min_element(raw.begin(), raw.end()),
+            10.0);
 }
 
 TEST(Probe, ReproducesTheInRunGauge) {
