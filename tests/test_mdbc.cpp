@@ -285,6 +285,31 @@ TEST(WallNormals, PointsBeyondTheWallLayersAreAnError) {
   EXPECT_NO_THROW(geometry::wall_normals(body, {{0.005, 0.5, 0}}, opt));
 }
 
+// A body thinner than twice its wall layers: a tank 2 dp wide with 3 layers puts the ghost of
+// its outermost layer beyond the far wall, outside the water: a case error naming the body,
+// the particle and the likely cause, not a wall particle that silently reads dry.
+TEST(WallNormals, GhostsOutsideTheWaterAreAnError) {
+  geometry::BodyGeometry body;
+  body.name = "slot";
+  body.fluid = false;
+  body.shape = std::make_shared<BoxShape>(Vector3d(0, 0, 0), Vector3d(0.02, 1, 0), 2);
+  body.layers = 3;
+  geometry::FillOptions opt;
+  opt.dim = 2;
+  opt.dp = 0.01;
+  EXPECT_NO_THROW(geometry::wall_normals(body, {{-0.005, 0.5, 0}}, opt));  // ghost at 0.005
+  try {
+    geometry::wall_normals(body, {{-0.005, 0.5, 0}, {-0.025, 0.5, 0}}, opt);  // ghost at 0.025
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("'slot'"), std::string::npos) << m;
+    EXPECT_NE(m.find("(-0.025, 0.5)"), std::string::npos) << m;
+    EXPECT_NE(m.find("falls inside the solid"), std::string::npos) << m;
+    EXPECT_NE(m.find("thinner than twice its wall layers"), std::string::npos) << m;
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Ghost-node interpolation
 
