@@ -225,14 +225,27 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
       switch (kind) {
         case GaugeSpec::Kind::Pressure:
         case GaugeSpec::Kind::Velocity: {
-          // Position of this gauge among the probes of its function object.
-          int index = 0;
+          // Position of this gauge among the probes of its function object, and their count.
+          int index = 0, expected = 0;
+          bool before = true;
           for (const auto& q : plan.probes) {
-            if (&q == &pr) break;
-            if (!q.skipped && q.function == pr.function) ++index;
+            if (&q == &pr) before = false;
+            if (q.skipped || q.function != pr.function) continue;
+            index += before;
+            ++expected;
           }
           const bool vector = kind == GaugeSpec::Kind::Velocity;
           const std::string file = vector ? "U" : "p";
+          // interFoam leaves out a location it finds in no cell; the columns would then shift
+          // onto the wrong gauges. Refuse to guess: the gauge is not converted, and said so.
+          const int declared = declared_probes(fo, file);
+          if (declared >= 0 && declared != expected) {
+            log << "  warning: gauge " << pr.spec.name << " not converted: " << (fo / file).string()
+                << " declares " << declared << " probe locations where the case has " << expected
+                << " (interFoam found a location in no cell?), so its columns cannot be matched "
+                   "to the gauges\n";
+            break;
+          }
           const int stride = vector ? 3 : 1;
           for (const auto& [key, row] : read_series(fo, file)) {
             const auto& v = row.second;
