@@ -246,8 +246,9 @@ void GaugeSet<D>::sample(double time, const ParticleSet<D>& ps, const std::vecto
         row_[e.first_column + k] = values[k];
         present_[e.first_column + k] = true;
       }
-      if (e.spec.every_step)  // due again at the next step's time, not at this one's again
-        e.next = time + 2e-12;
+      if (e.spec.every_step)  // due again at the next step's time, never at this one's again:
+        // past due()'s 1e-12 tolerance and a few of the time's ulps (~1.8e-12 at 1e4 s)
+        e.next = time + std::max(2e-12, 4.0 * (std::nextafter(time, 2.0 * time + 1.0) - time));
       else
         while (e.next <= time + 1e-12) e.next += e.every;
       any = true;

@@ -207,8 +207,11 @@ std::vector<Eigen::Vector3d> wall_normals(const BodyGeometry& body,
             std::to_string(body.layers) + " wall layers";
     else if (!fluid_side && n.norm() > tol)
       why = "its ghost node " + format_point(ghost, opt.dim) +
-            " falls inside the solid (is the body thinner than twice its wall layers, or "
-            "the mesh not closed?)";
+            (body.walls_inside
+                 ? " falls outside the tank (is the tank narrower than twice its wall layers, "
+                   "or the mesh not closed?)"
+                 : " falls inside the solid (is the body thinner than twice its wall layers, or "
+                   "the mesh not closed?)");
     if (!why.empty()) {
 #pragma omp critical(swell_wall_normals)
       if (error.empty())

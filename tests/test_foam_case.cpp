@@ -344,18 +344,34 @@ TEST(FoamCase, PostProcessingConvertsToTheSphCsvFormat) {
   EXPECT_EQ(header(ccsv), "time [s],F_obs_fx [N/m],F_obs_fy [N/m],F_obs_mz [N m/m]");
   EXPECT_NE(ccsv.find("\n0.01,1,-2,0.5\n"), std::string::npos) << ccsv;
 
-  // A probes file whose header declares another number of locations than the case has (as
-  // when interFoam finds a location in no cell and leaves it out): its columns cannot be
-  // matched to the gauges, so the gauge is not converted and the log says why.
-  std::ofstream(pp / "pressure_0/0/p") << "# Probe 0 (0.004 0.0200008 0)\n# Probe 1 (0.1 0.1 0)\n"
-                                       << "#     Probe    0    1\n#      Time\n"
-                                       << "      0.01   863.5   12.0\n";
+  // A location interFoam (v1912) finds in no cell keeps its header line, marked "# Not Found",
+  // and its column holds -VGREAT: the gauge is not converted (no -1e300 Pa), and the log says
+  // why.
+  std::ofstream(pp / "pressure_0/0/p") << "# Probe 0 (0.004 0.0200008 0) # Not Found\n"
+                                       << "#     Probe    0\n#      Time\n"
+                                       << "      0.01   -1e+300\n";
   std::ostringstream log2;
   convert_foam_gauges(spec, opt, (dir / "gauges").string(), log2);
   EXPECT_NE(log2.str().find("gauge P_wall not converted"), std::string::npos) << log2.str();
-  EXPECT_NE(log2.str().find("declares 2 probe locations where the case has 1"), std::string::npos)
-      << log2.str();
+  EXPECT_NE(log2.str().find("\"Not Found\""), std::string::npos) << log2.str();
+  EXPECT_EQ(read(dir / "gauges/gauges_pressure.csv").find("e+300"), std::string::npos);
+  // A header that lists another number of locations than the case has (output of an earlier
+  // version of the case): the columns cannot be matched to the gauges.
+  std::ofstream(pp / "pressure_0/0/p") << "# Probe 0 (0.004 0.0200008 0)\n# Probe 1 (0.1 0.1 0)\n"
+                                       << "#     Probe    0    1\n#      Time\n"
+                                       << "      0.01   863.5   12.0\n";
+  std::ostringstream log3;
+  convert_foam_gauges(spec, opt, (dir / "gauges").string(), log3);
+  EXPECT_NE(log3.str().find("declares 2 probe locations where the case has 1"), std::string::npos)
+      << log3.str();
   EXPECT_EQ(read(dir / "gauges/gauges_pressure.csv").find("863.5"), std::string::npos);
+  // A -VGREAT sample under an unmarked header reads as no value (nan), never as -1e300 Pa.
+  std::ofstream(pp / "pressure_0/0/p")
+      << "# Probe 0 (0.004 0.0200008 0)\n#     Probe    0\n"
+      << "#      Time\n      0.01   -1e+300\n      0.02   900.25\n";
+  convert_foam_gauges(spec, opt, (dir / "gauges").string(), log3);
+  const std::string nan_csv = read(dir / "gauges/gauges_pressure.csv");
+  EXPECT_NE(nan_csv.find("\n0.01,nan\n0.02,900.25\n"), std::string::npos) << nan_csv;
 }
 
 TEST(FoamCase, CasesItCannotMeshAreRefused) {

@@ -285,9 +285,9 @@ TEST(WallNormals, PointsBeyondTheWallLayersAreAnError) {
   EXPECT_NO_THROW(geometry::wall_normals(body, {{0.005, 0.5, 0}}, opt));
 }
 
-// A body thinner than twice its wall layers: a tank 2 dp wide with 3 layers puts the ghost of
-// its outermost layer beyond the far wall, outside the water: a case error naming the body,
-// the particle and the likely cause, not a wall particle that silently reads dry.
+// A tank narrower than twice its wall layers (2 dp wide, 3 layers) puts the ghost of its
+// outermost layer beyond the far wall, outside the water: a case error naming the body, the
+// particle and the likely cause, not a wall particle that silently reads dry.
 TEST(WallNormals, GhostsOutsideTheWaterAreAnError) {
   geometry::BodyGeometry body;
   body.name = "slot";
@@ -305,8 +305,8 @@ TEST(WallNormals, GhostsOutsideTheWaterAreAnError) {
     const std::string m = e.what();
     EXPECT_NE(m.find("'slot'"), std::string::npos) << m;
     EXPECT_NE(m.find("(-0.025, 0.5)"), std::string::npos) << m;
-    EXPECT_NE(m.find("falls inside the solid"), std::string::npos) << m;
-    EXPECT_NE(m.find("thinner than twice its wall layers"), std::string::npos) << m;
+    EXPECT_NE(m.find("falls outside the tank"), std::string::npos) << m;
+    EXPECT_NE(m.find("narrower than twice its wall layers"), std::string::npos) << m;
   }
 }
 

@@ -77,17 +77,22 @@ std::map<long long, std::pair<double, std::vector<double>>> read_series(const fs
   return rows;
 }
 
-// Probe count declared in a probes file header ("# Probe i (x y z)" lines).
-int declared_probes(const fs::path& fo_dir, const std::string& file) {
+// The "# Probe i (x y z)" header lines of a probes file, one list per time folder that holds
+// the file (a continued run writes a new folder). interFoam (v1912) lists every location of its
+// dictionary; one it finds in no cell is marked "# Not Found" and its column holds -VGREAT.
+std::vector<std::vector<std::string>> probe_headers(const fs::path& fo_dir,
+                                                    const std::string& file) {
+  std::vector<std::vector<std::string>> out;
   for (const auto& [start, dir] : time_dirs(fo_dir)) {
     std::ifstream in(dir / file);
+    if (!in) continue;
+    std::vector<std::string> lines;
     std::string line;
-    int n = 0;
     while (std::getline(in, line) && !line.empty() && line[0] == '#')
-      if (line.rfind("# Probe ", 0) == 0) ++n;
-    if (n > 0) return n;
+      if (line.rfind("# Probe ", 0) == 0) lines.push_back(line);
+    out.push_back(std::move(lines));
   }
-  return -1;
+  return out;
 }
 
 // A raw set file: one "x y z alpha" line per point found in the mesh; points in case axes.
@@ -236,14 +241,23 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
           }
           const bool vector = kind == GaugeSpec::Kind::Velocity;
           const std::string file = vector ? "U" : "p";
-          // interFoam leaves out a location it finds in no cell; the columns would then shift
-          // onto the wrong gauges. Refuse to guess: the gauge is not converted, and said so.
-          const int declared = declared_probes(fo, file);
-          if (declared >= 0 && declared != expected) {
+          // The header must list the case's locations: another count (output of an earlier
+          // version of the case) would put the columns onto the wrong gauges, and a location
+          // interFoam found in no cell has only -VGREAT. Either way the gauge is left out, said.
+          std::string why;
+          for (const auto& lines : probe_headers(fo, file)) {
+            if (lines.empty()) continue;
+            if (static_cast<int>(lines.size()) != expected)
+              why = "declares " + std::to_string(lines.size()) +
+                    " probe locations where the case has " + std::to_string(expected) +
+                    " (written for another version of the case?), so its columns cannot be "
+                    "matched to the gauges";
+            else if (lines[static_cast<std::size_t>(index)].find("Not Found") != std::string::npos)
+              why = "marks this gauge's location \"Not Found\" (in no cell of the mesh)";
+          }
+          if (!why.empty()) {
             log << "  warning: gauge " << pr.spec.name << " not converted: " << (fo / file).string()
-                << " declares " << declared << " probe locations where the case has " << expected
-                << " (interFoam found a location in no cell?), so its columns cannot be matched "
-                   "to the gauges\n";
+                << " " << why << "\n";
             break;
           }
           const int stride = vector ? 3 : 1;
@@ -253,6 +267,8 @@ std::vector<std::string> convert_foam_gauges(const CaseSpec& spec, const FoamOpt
             std::vector<double> out(v.begin() + index * stride,
                                     v.begin() + index * stride + (vector ? dim : 1));
             if (vector && plan.z_up) out[1] = v[index * stride + 2];  // OpenFOAM's z: case y
+            for (double& x : out)  // -VGREAT: a location interFoam did not find
+              if (std::abs(x) >= 1e299) x = kNaN;
             put(m, row.first, std::move(out));
           }
           break;
