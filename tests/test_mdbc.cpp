@@ -263,15 +263,26 @@ TEST(WallNormals, RampOnTheFloorMirrorsIntoTheWaterAtItsToe) {
   EXPECT_GT(toe, 3);
 }
 
-TEST(WallNormals, PointsBeyondTheWallLayersAreAnError) {
+// A 2D boundary body: the box [0, width] x [0, 1] with `layers` wall layers (walls inside).
+geometry::BodyGeometry box_body_2d(const std::string& name, double width, int layers) {
   geometry::BodyGeometry body;
-  body.name = "plate";
+  body.name = name;
   body.fluid = false;
-  body.shape = std::make_shared<BoxShape>(Vector3d(0, 0, 0), Vector3d(1, 1, 0), 2);
-  body.layers = 2;
+  body.shape = std::make_shared<BoxShape>(Vector3d(0, 0, 0), Vector3d(width, 1, 0), 2);
+  body.layers = layers;
+  return body;
+}
+
+geometry::FillOptions fill_2d(double dp) {
   geometry::FillOptions opt;
   opt.dim = 2;
-  opt.dp = 0.01;
+  opt.dp = dp;
+  return opt;
+}
+
+TEST(WallNormals, PointsBeyondTheWallLayersAreAnError) {
+  geometry::BodyGeometry body = box_body_2d("plate", 1.0, 2);
+  const geometry::FillOptions opt = fill_2d(0.01);
   EXPECT_NO_THROW(geometry::wall_normals(body, {{-0.005, 0.5, 0}}, opt));
   try {
     geometry::wall_normals(body, {{-0.2, 0.5, 0}}, opt);
@@ -289,14 +300,8 @@ TEST(WallNormals, PointsBeyondTheWallLayersAreAnError) {
 // outermost layer beyond the far wall, outside the water: a case error naming the body, the
 // particle and the likely cause, not a wall particle that silently reads dry.
 TEST(WallNormals, GhostsOutsideTheWaterAreAnError) {
-  geometry::BodyGeometry body;
-  body.name = "slot";
-  body.fluid = false;
-  body.shape = std::make_shared<BoxShape>(Vector3d(0, 0, 0), Vector3d(0.02, 1, 0), 2);
-  body.layers = 3;
-  geometry::FillOptions opt;
-  opt.dim = 2;
-  opt.dp = 0.01;
+  const geometry::BodyGeometry body = box_body_2d("slot", 0.02, 3);
+  const geometry::FillOptions opt = fill_2d(0.01);
   EXPECT_NO_THROW(geometry::wall_normals(body, {{-0.005, 0.5, 0}}, opt));  // ghost at 0.005
   try {
     geometry::wall_normals(body, {{-0.005, 0.5, 0}, {-0.025, 0.5, 0}}, opt);  // ghost at 0.025
