@@ -2,9 +2,10 @@
 //
 // gather_neighbours() tests a contiguous range of candidate particles against a particle's
 // kernel support and appends the hits to a list whose entries carry the wall flag in their top
-// bit. A selection policy says which b a particle a may see: it is the boundary model's say in
-// the pair loop (bc/dbc uses WallsSeeFluid) and one of the loop's three compile-time switches
-// (kernel, viscosity, selection).
+// bit; fluid_within() does the same for a point's fluid candidates (mDBC's ghost nodes). A
+// selection policy says which b a particle a may see: it is the boundary model's say in the pair
+// loop (bc/dbc uses WallsSeeFluid) and one of the loop's three compile-time switches (kernel,
+// viscosity, selection).
 #pragma once
 
 #include <immintrin.h>
@@ -35,6 +36,35 @@ struct WallsSeeFluid {
   static constexpr bool kSkipDryCells = true;
 };
 
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__)
+// The coordinates of the `count` (1..8) particles at p (D packed doubles each), split by axis:
+// xb[d] lane l is particle l's coordinate d (lanes past count zero). Masked loads of the
+// D x count consecutive doubles, then two-source permutes.
+template <int D>
+inline void load_axes8(const double* p, std::uint32_t count, __m512d xb[D]) {
+  static_assert(D == 2 || D == 3, "the AVX-512 path handles 2D and 3D");
+  const unsigned nd = count * D;  // doubles to read
+  const auto part = [nd](unsigned from) {
+    return nd >= from + 8 ? __mmask8(0xFF)
+           : nd > from    ? __mmask8((1u << (nd - from)) - 1u)
+                          : __mmask8(0);
+  };
+  const __m512d c0 = _mm512_maskz_loadu_pd(part(0), p), c1 = _mm512_maskz_loadu_pd(part(8), p + 8);
+  if constexpr (D == 2) {
+    xb[0] = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14), c1);
+    xb[1] = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15), c1);
+  } else {
+    const __m512d c2 = _mm512_maskz_loadu_pd(part(16), p + 16);
+    const __m512d tx = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0), c1);
+    const __m512d ty = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0), c1);
+    const __m512d tz = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0), c1);
+    xb[0] = _mm512_permutex2var_pd(tx, _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13), c2);
+    xb[1] = _mm512_permutex2var_pd(ty, _mm512_setr_epi64(0, 1, 2, 3, 4, 8, 11, 14), c2);
+    xb[2] = _mm512_permutex2var_pd(tz, _mm512_setr_epi64(0, 1, 2, 3, 4, 9, 12, 15), c2);
+  }
+}
+#endif
+
 // Appends to nb[k...] the entries of the particles b in [b0, b1) within the kernel support of
 // xa (b != a; which b per the selection policy) and returns the new count. P holds the
 // positions (D doubles a particle), role the roles. nb must have room for (b1 - b0) + 8 more
@@ -57,33 +87,8 @@ inline std::uint32_t gather_neighbours(const double* P, const Role* role, const 
   for (; b < b1; b += 8) {
     const std::uint32_t left = b1 - b;
     const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
-    // The 8 candidates' coordinates are D x 8 consecutive doubles: load them (masked at the
-    // end of the range) and split them by axis with two-source permutes.
-    const double* p = P + static_cast<std::size_t>(b) * D;
-    const unsigned nd = (left >= 8 ? 8u : left) * D;  // doubles to read
-    auto part = [nd](unsigned from) {
-      return nd >= from + 8 ? __mmask8(0xFF)
-             : nd > from    ? __mmask8((1u << (nd - from)) - 1u)
-                            : __mmask8(0);
-    };
     __m512d xb[D];
-    const __m512d c0 = _mm512_maskz_loadu_pd(part(0), p),
-                  c1 = _mm512_maskz_loadu_pd(part(8), p + 8);
-    if constexpr (D == 2) {
-      xb[0] = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14), c1);
-      xb[1] = _mm512_permutex2var_pd(c0, _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15), c1);
-    } else {
-      const __m512d c2 = _mm512_maskz_loadu_pd(part(16), p + 16);
-      const __m512d tx =
-          _mm512_permutex2var_pd(c0, _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0), c1);
-      const __m512d ty =
-          _mm512_permutex2var_pd(c0, _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0), c1);
-      const __m512d tz =
-          _mm512_permutex2var_pd(c0, _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0), c1);
-      xb[0] = _mm512_permutex2var_pd(tx, _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13), c2);
-      xb[1] = _mm512_permutex2var_pd(ty, _mm512_setr_epi64(0, 1, 2, 3, 4, 8, 11, 14), c2);
-      xb[2] = _mm512_permutex2var_pd(tz, _mm512_setr_epi64(0, 1, 2, 3, 4, 9, 12, 15), c2);
-    }
+    load_axes8<D>(P + static_cast<std::size_t>(b) * D, left >= 8 ? 8u : left, xb);
     __m512d r2 = zero;
     for (int d = 0; d < D; ++d) {
       const __m512d dx = _mm512_sub_pd(xav[d], xb[d]);
@@ -114,6 +119,52 @@ inline std::uint32_t gather_neighbours(const double* P, const Role* role, const 
   }
 #endif
   return k;
+}
+
+// Appends to out[n...] the fluid particles b of [b0, b1) with |x - x_b|^2 < s2 (P: D packed
+// doubles a particle) and returns the new count; out needs room for b1 - b0 + 8 more entries.
+// The candidates of a point that is no particle (mDBC's ghost nodes, bc/mdbc.hpp); the caller
+// passes s2 with a margin and decides membership itself. AVX-512: 8 candidates at once, the
+// hits packed with a register compress.
+template <int D>
+inline int fluid_within(const double* P, const Role* role, const double* x, double s2,
+                        std::uint32_t b0, std::uint32_t b1, std::uint32_t* out, int n) {
+  std::uint32_t b = b0;
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512BW__)
+  const __m512d s2v = _mm512_set1_pd(s2);
+  __m512d xv[D];
+  for (int d = 0; d < D; ++d) xv[d] = _mm512_set1_pd(x[d]);
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m128i fluid_role = _mm_set1_epi8(static_cast<char>(Role::Fluid));
+  for (; b < b1; b += 8) {
+    const std::uint32_t left = b1 - b;
+    const __mmask8 valid = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
+    __m512d xb[D];
+    load_axes8<D>(P + static_cast<std::size_t>(b) * D, left >= 8 ? 8u : left, xb);
+    __m512d r2 = _mm512_setzero_pd();
+    for (int d = 0; d < D; ++d) {
+      const __m512d dx = _mm512_sub_pd(xv[d], xb[d]);
+      r2 = _mm512_fmadd_pd(dx, dx, r2);
+    }
+    const __m128i kb = _mm_maskz_loadu_epi8(valid, role + b);
+    const __mmask8 m = valid & static_cast<__mmask8>(_mm_cmpeq_epi8_mask(kb, fluid_role)) &
+                       _mm512_cmp_pd_mask(r2, s2v, _CMP_LT_OQ);
+    const __m256i idx = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(b)), lane);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + n), _mm256_maskz_compress_epi32(m, idx));
+    n += __builtin_popcount(m);
+  }
+#else
+  for (; b < b1; ++b) {
+    if (role[b] != Role::Fluid) continue;
+    double r2 = 0.0;
+    for (int d = 0; d < D; ++d) {
+      const double dx = x[d] - P[b * D + d];
+      r2 += dx * dx;
+    }
+    if (r2 < s2) out[n++] = b;
+  }
+#endif
+  return n;
 }
 
 // The float form of the test (issue #16: 16 candidates per AVX-512 instruction instead of 8),
