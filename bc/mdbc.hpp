@@ -72,7 +72,8 @@ GhostValue<D> ghost_interpolate(const ParticleSet<D>& ps, const CellGrid<D>& gri
   const double s2 = kernel.support() * kernel.support();
   // The fluid near the support is collected in blocks by a SIMD test with a margin; each block
   // is then tested exactly (r^2 < s2 as one scalar pass would), its kernel values are taken in
-  // SIMD lanes (sqrt, divisions, the kernel's branches), and the sums run over it in the grid's
+  // SIMD lanes (sqrt, divisions, the kernel's branches; the Gaussian's exp stays scalar without
+  // -ffast-math), and the sums run over it in the grid's
   // order with the same arithmetic as a plain scalar loop. The ghost values agree with that
   // loop's to the last bits (MdbcGhost.BlockedPassMatchesThePlainScalarPass; where the compiler
   // fuses multiply-adds differently they may differ in the last bit), and the runs' float state

@@ -460,11 +460,11 @@ void expect_blocked_pass_is_scalar(KernelType type, double coefh) {
         const GhostValue<D> b = ghost_scalar_reference<D>(ps, grid, k, xg, 1e-3, vel);
         ASSERT_EQ(a.mode, b.mode) << xg.transpose();
         ++modes[static_cast<int>(a.mode)];
-        // The same sums in the same order: equal to the last bits. The pass is bit for bit
-        // the scalar one in the solver (scripts/bitwise); here the reference sits in another
-        // translation unit, where the compiler may fuse other multiply-adds (FMA), so the
-        // test allows rounding. A candidate dropped, doubled or taken out of order at a
-        // block's edge moves the sums by far more.
+        // The same sums in the same order: equal to the last bits. The reference is another
+        // loop, in which the compiler may fuse other multiply-adds (FMA), so the test allows
+        // rounding: it catches a candidate dropped or counted twice at a block's edge (one of
+        // 100-1100 moves rho by about 1), not a change of order, which moves only the last
+        // bits (scripts/bitwise guards the order: the runs' state must stay bit for bit).
         // Scales: det ~ 1, rho ~ 1000, its gradient ~ rho / h, velocities ~ 1; the solve of
         // a random cloud's matrix may amplify the sums' rounding by its condition number.
         const auto near = [](double x, double y, double scale) {

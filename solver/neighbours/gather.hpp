@@ -158,7 +158,7 @@ inline int fluid_within(const double* P, const Role* role, const double* x, doub
     if (role[b] != Role::Fluid) continue;
     double r2 = 0.0;
     for (int d = 0; d < D; ++d) {
-      const double dx = x[d] - P[b * D + d];
+      const double dx = x[d] - P[static_cast<std::size_t>(b) * D + d];
       r2 += dx * dx;
     }
     if (r2 < s2) out[n++] = b;
