@@ -113,7 +113,9 @@ def plot(rows, lab_h, lab_r, png):
               label="runup law 2.831 sqrt(cot beta) (H/d)^1.25")
     ax.axvline(0.045, color="0.6", lw=0.8, ls=":")
     ax.text(0.047, 0.012, "breaking (lab)", color="0.4", fontsize=8)
-    colours = ["#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9"]
+    # Okabe-Ito, then four more, so each run group has its own colour
+    colours = ["#D55E00", "#0072B2", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#8C564B",
+               "#7F7F7F", "#9467BD", "#BCBD22"]
     groups = sorted({(r["dp_m"], r.get("settings", "")) for r in rows})
     for i, (dp, settings) in enumerate(groups):
         sel = [r for r in rows if r["dp_m"] == dp and r.get("settings", "") == settings]
