@@ -109,7 +109,7 @@ int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadat
     ctx.line_top = top + 2.0 * meta.h;
     const auto values = evaluate_gauge<D>(g, ctx, ps, s.p, no_ace);
     char buf[40];
-    std::snprintf(buf, sizeof(buf), "%.9g", s.time);
+    std::snprintf(buf, sizeof(buf), "%.12g", s.time);  // as the run's gauge files (gauge_csv)
     csv << buf;
     for (double v : values) {
       std::snprintf(buf, sizeof(buf), "%.9g", v);

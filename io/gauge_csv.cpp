@@ -2,32 +2,66 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "io/vtk_writer.hpp"
 
 namespace swell {
 
+namespace {
+
+// Significant digits of a row's printed time (its first cell).
+int time_digits(const std::string& line) {
+  int digits = 0;
+  bool leading = true;
+  for (const char c : line) {
+    if (c == ',' || c == 'e' || c == 'E') break;
+    if (c < '0' || c > '9') continue;  // sign, decimal point
+    if (leading && c == '0') continue;
+    leading = false;
+    ++digits;
+  }
+  return digits;
+}
+
+}  // namespace
+
 GaugeCsvFile::GaugeCsvFile(const std::string& path, const std::vector<std::string>& comment,
                            const std::vector<std::string>& columns, double resume_after)
     : path_(path), columns_(columns.size()) {
   if (resume_after >= 0.0 && std::filesystem::exists(path)) {
-    // Keep the header and every row up to the checkpoint time; rewrite atomically.
+    // Keep the header and every row up to the checkpoint time; rewrite atomically. Times are
+    // printed with 12 significant digits (write_row); files written before 2026-12-07 have 9.
+    // A file with a time of 10 or more digits was written with 12: a row is kept where its
+    // printed time is at most the checkpoint time printed the same way (rounding is monotonic,
+    // so every row up to the checkpoint stays and every later one goes unless it lies within
+    // 5e-13 relative of it). Otherwise (9-digit files, and files whose times all print short,
+    // e.g. interval rows at round times) the 9-digit files' rule: up to 1e-8 relative above.
     std::ifstream in(path);
-    std::ostringstream kept;
+    std::vector<std::string> lines;
     std::string line;
+    bool twelve = false;
     while (std::getline(in, line)) {
+      lines.push_back(line);
       const bool data = !line.empty() && line[0] != '#' && line.rfind("time", 0) != 0;
+      if (data && time_digits(line) >= 10) twelve = true;
+    }
+    char buf[40];
+    std::snprintf(buf, sizeof(buf), "%.12g", resume_after);
+    const double last = twelve ? std::strtod(buf, nullptr) : resume_after * (1.0 + 1e-8) + 1e-12;
+    std::ostringstream kept;
+    for (const auto& l : lines) {
+      const bool data = !l.empty() && l[0] != '#' && l.rfind("time", 0) != 0;
       if (data) {
         double t = 0.0;
-        // Times are printed with 9 digits: compare with that resolution.
-        if (std::sscanf(line.c_str(), "%lf", &t) != 1 || t > resume_after * (1.0 + 1e-8) + 1e-12)
-          continue;
+        if (std::sscanf(l.c_str(), "%lf", &t) != 1 || t > last) continue;
       }
-      kept << line << '\n';
+      kept << l << '\n';
     }
     write_file_atomically(path, kept.str());
     out_.open(path, std::ios::app);
@@ -57,7 +91,8 @@ void GaugeCsvFile::flush() {
 void GaugeCsvFile::write_row(double time, const std::vector<double>& values,
                              const std::vector<bool>& present) {
   char buf[40];
-  std::snprintf(buf, sizeof(buf), "%.9g", time);
+  // 12 digits: a per-step series keeps its steps apart at long times (dt 1e-5 s at 1e5 s).
+  std::snprintf(buf, sizeof(buf), "%.12g", time);
   out_ << buf;
   for (std::size_t c = 0; c < columns_; ++c) {
     out_ << ',';

@@ -1,5 +1,6 @@
-// Gauge CSV files: header with units, values read back as written (9 significant digits),
-// empty cells for gauges not due, and a resumed file that drops rows after the restart time.
+// Gauge CSV files: header with units, values read back as written (9 significant digits, the
+// time 12), empty cells for gauges not due, and a resumed file that drops rows after the restart
+// time, also at long times and in files written with 9-digit times.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -61,6 +62,51 @@ TEST(GaugeCsv, RoundTripWithUnitsAndEmptyCells) {
   EXPECT_EQ(std::stod(rows[2][0]), 0.0015);
   EXPECT_EQ(std::stod(rows[2][2]), 8.0);
   EXPECT_EQ(header.size(), 3u);
+}
+
+// A per-step series at t ~ 1e4 s (dt 5e-5 s): every row keeps its own time, and a restart keeps
+// exactly the rows up to the checkpoint. (With 9-digit times the rows 1e-4 s apart printed the
+// same time, and the restart kept two rows written after the checkpoint.)
+TEST(GaugeCsv, LongRunsKeepStepTimesApartAndResumeAtTheCheckpoint) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "swell_gauge_csv_long.csv").string();
+  const double t0 = 1.0e4, dt = 5.0e-5;
+  {
+    GaugeCsvFile f(path, {"test file"}, {"R [m]"});
+    for (int k = 0; k <= 10; ++k) f.write_row(t0 + k * dt, {0.1 * k}, {true});
+  }
+  std::vector<std::string> header;
+  auto rows = read_cells(path, &header);
+  ASSERT_EQ(rows.size(), 11u);
+  for (int k = 0; k <= 10; ++k) EXPECT_NEAR(std::stod(rows[k][0]), t0 + k * dt, 1e-8) << k;
+  {
+    GaugeCsvFile f(path, {"test file"}, {"R [m]"}, t0 + 5 * dt);
+    f.write_row(t0 + 6 * dt, {-1.0}, {true});
+  }
+  rows = read_cells(path, &header);
+  ASSERT_EQ(rows.size(), 7u);  // k = 0..5, then the resumed run's first row
+  EXPECT_NEAR(std::stod(rows[5][0]), t0 + 5 * dt, 1e-8);
+  EXPECT_EQ(std::stod(rows[6][1]), -1.0);
+}
+
+// A file written with 9-digit times (before 2026-12-07), resumed by this build: the row at the
+// checkpoint time, printed rounded up, stays; the next one goes.
+TEST(GaugeCsv, NineDigitFilesResumeAsBefore) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "swell_gauge_csv_old.csv").string();
+  {
+    std::ofstream f(path);
+    f << "# test file\ntime [s],P1 [Pa]\n0.100000000,1\n0.123456790,2\n0.123556790,3\n";
+  }
+  {
+    GaugeCsvFile f(path, {"test file"}, {"P1 [Pa]"}, 0.1234567896);  // printed 0.12345679
+    f.write_row(0.124, {4.0}, {true});
+  }
+  std::vector<std::string> header;
+  const auto rows = read_cells(path, &header);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1][1], "2");
+  EXPECT_EQ(std::stod(rows[2][0]), 0.124);
 }
 
 }  // namespace
