@@ -8,6 +8,7 @@
 
 #include "apps/gauge_set.hpp"
 #include "io/case_file.hpp"
+#include "io/gauge_csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
@@ -109,7 +110,7 @@ int probe_dim(const ProbeOptions& opt, const std::string& path, const RunMetadat
     ctx.line_top = top + 2.0 * meta.h;
     const auto values = evaluate_gauge<D>(g, ctx, ps, s.p, no_ace);
     char buf[40];
-    std::snprintf(buf, sizeof(buf), "%.12g", s.time);  // as the run's gauge files (gauge_csv)
+    format_gauge_time(buf, sizeof(buf), s.time);  // as the run's gauge files
     csv << buf;
     for (double v : values) {
       std::snprintf(buf, sizeof(buf), "%.9g", v);

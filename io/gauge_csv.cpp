@@ -42,22 +42,26 @@ GaugeCsvFile::GaugeCsvFile(const std::string& path, const std::vector<std::strin
     // so every row up to the checkpoint stays and every later one goes unless it lies within
     // 5e-13 relative of it). Otherwise (9-digit files, and files whose times all print short,
     // e.g. interval rows at round times) the 9-digit files' rule: up to 1e-8 relative above.
+    // (A 9-digit file resumed by this build and then again after 12-digit rows were added
+    // takes the 12-digit rule for its old rows too: its row at the first checkpoint, if
+    // printed rounded up, is then dropped.)
+    const auto is_data = [](const std::string& l) {
+      return !l.empty() && l[0] != '#' && l.rfind("time", 0) != 0;
+    };
     std::ifstream in(path);
     std::vector<std::string> lines;
     std::string line;
     bool twelve = false;
     while (std::getline(in, line)) {
       lines.push_back(line);
-      const bool data = !line.empty() && line[0] != '#' && line.rfind("time", 0) != 0;
-      if (data && time_digits(line) >= 10) twelve = true;
+      if (is_data(line) && time_digits(line) >= 10) twelve = true;
     }
     char buf[40];
-    std::snprintf(buf, sizeof(buf), "%.12g", resume_after);
+    format_gauge_time(buf, sizeof(buf), resume_after);
     const double last = twelve ? std::strtod(buf, nullptr) : resume_after * (1.0 + 1e-8) + 1e-12;
     std::ostringstream kept;
     for (const auto& l : lines) {
-      const bool data = !l.empty() && l[0] != '#' && l.rfind("time", 0) != 0;
-      if (data) {
+      if (is_data(l)) {
         double t = 0.0;
         if (std::sscanf(l.c_str(), "%lf", &t) != 1 || t > last) continue;
       }
@@ -91,8 +95,7 @@ void GaugeCsvFile::flush() {
 void GaugeCsvFile::write_row(double time, const std::vector<double>& values,
                              const std::vector<bool>& present) {
   char buf[40];
-  // 12 digits: a per-step series keeps its steps apart at long times (dt 1e-5 s at 1e5 s).
-  std::snprintf(buf, sizeof(buf), "%.12g", time);
+  format_gauge_time(buf, sizeof(buf), time);
   out_ << buf;
   for (std::size_t c = 0; c < columns_; ++c) {
     out_ << ',';

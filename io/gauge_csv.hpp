@@ -3,6 +3,7 @@
 // checkpoint time and appends after them, so the file reads as if the run never stopped.
 #pragma once
 
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -14,6 +15,12 @@ namespace swell {
 // The CSV columns of a gauge (name and SI unit per quantity), the same for SPH runs, `swell
 // probe` and converted OpenFOAM runs, so `swell compare` reads them alike.
 std::vector<std::string> gauge_columns(const GaugeSpec& g, int dim);
+
+// The time column's text, for the run's gauge files, their restart and `swell probe`: 12
+// significant digits (values have 9), so a per-step series keeps its steps apart at long times.
+inline int format_gauge_time(char* buf, std::size_t size, double t) {
+  return std::snprintf(buf, size, "%.12g", t);
+}
 
 class GaugeCsvFile {
  public:
