@@ -15,10 +15,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "apps/case_runner.hpp"
 #include "bench/bench_run.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
 #include "io/resources.hpp"
+#include "run/run.hpp"
 #include "validation/validation_report.hpp"
 
 namespace swell {

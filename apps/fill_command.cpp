@@ -9,9 +9,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "case/geometry.hpp"
+#include "case/setup.hpp"
 #include "geometry/fill_volume.hpp"
-#include "io/case_geometry.hpp"
-#include "io/case_setup.hpp"
 #include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/physics/eos.hpp"

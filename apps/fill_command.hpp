@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "case/spec.hpp"
 #include "geometry/lattice_fill.hpp"
 #include "geometry/mesh_solid.hpp"
-#include "io/case_spec.hpp"
 
 namespace swell {
 

@@ -1,12 +1,12 @@
 // `swell foam CASE.yaml -o DIR [--cell SIZE] [--cells-per-dp K] [--end T] [--run] [--np N]`:
 // writes the interFoam case of a Swell case file and, with --run, runs it and converts its
-// probes to gauges_<kind>.csv (validation/foam.hpp). Prints a summary.
+// probes to gauges_<kind>.csv (foam/foam.hpp). Prints a summary.
 #pragma once
 
 #include <iosfwd>
 
-#include "io/case_spec.hpp"
-#include "validation/foam.hpp"
+#include "case/spec.hpp"
+#include "foam/foam.hpp"
 
 namespace swell {
 

@@ -115,11 +115,7 @@ void run_waves_goda(const WavesGodaOptions& opt, std::ostream& out) {
   out << rep.str();
 }
 
-bool WavesGodaCommand::chosen() const {
-  return app_->parsed();
-}
-
-WavesGodaCommand add_waves_goda_command(CLI::App& waves) {
+Subcommand add_waves_goda_command(CLI::App& waves) {
   auto opt = std::make_shared<WavesGodaOptions>();
   waves::GodaInput& in = opt->input;
   auto* a = waves.add_subcommand(
@@ -138,7 +134,7 @@ WavesGodaCommand add_waves_goda_command(CLI::App& waves) {
   a->add_option("--rho", in.rho, "water density [kg/m^3] (default 1000)");
   a->add_option("-g", in.g, "gravity [m/s^2] (default 9.81)");
   a->add_option("--csv", opt->csv, "write the distribution z, p(z) and the results as CSV");
-  return WavesGodaCommand(a, opt);
+  return Subcommand(a, [opt](std::ostream& out) { run_waves_goda(*opt, out); });
 }
 
 }  // namespace swell

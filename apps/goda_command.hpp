@@ -5,10 +5,10 @@
 #pragma once
 
 #include <iosfwd>
-#include <memory>
 #include <string>
 #include <utility>
 
+#include "apps/subcommand.hpp"
 #include "waves/goda.hpp"
 
 namespace CLI {
@@ -30,18 +30,7 @@ void run_waves_goda(const WavesGodaOptions& opt, std::ostream& out);
 
 // The `goda` subcommand added to a `waves` command (as `analyse`): parsing fills the options,
 // the caller runs it when chosen() is true.
-class WavesGodaCommand {
- public:
-  WavesGodaCommand(CLI::App* app, std::shared_ptr<WavesGodaOptions> opt)
-      : app_(app), opt_(std::move(opt)) {}
-  bool chosen() const;
-  void run(std::ostream& out) const { run_waves_goda(*opt_, out); }
-
- private:
-  CLI::App* app_;
-  std::shared_ptr<WavesGodaOptions> opt_;
-};
-
-WavesGodaCommand add_waves_goda_command(CLI::App& waves);
+// Adds `swell waves goda` to `waves`.
+Subcommand add_waves_goda_command(CLI::App& waves);
 
 }  // namespace swell

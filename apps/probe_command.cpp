@@ -6,12 +6,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "apps/gauge_set.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
 #include "io/gauge_csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
+#include "run/gauge_set.hpp"
 
 namespace swell {
 namespace {

@@ -11,25 +11,26 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "apps/bench_command.hpp"
-#include "apps/case_runner.hpp"
 #include "apps/fill_command.hpp"
 #include "apps/foam_command.hpp"
 #include "apps/goda_command.hpp"
 #include "apps/probe_command.hpp"
-#include "apps/stop_signals.hpp"
 #include "apps/validate_command.hpp"
 #include "apps/verify_command.hpp"
 #include "apps/wave_analysis_command.hpp"
 #include "apps/wave_predict_command.hpp"
 #include "apps/wave_target_command.hpp"
 #include "apps/waves_command.hpp"
-#include "io/case_file.hpp"
-#include "io/case_schema.hpp"
+#include "case/reader.hpp"
+#include "case/schema.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/provenance.hpp"
 #include "parallel/comm.hpp"
+#include "run/run.hpp"
+#include "run/stop_signals.hpp"
 #include "solver/time/simulation.hpp"
 #include "validation/validation_manifest.hpp"
 
@@ -59,7 +60,7 @@ const CLI::Validator kPositive(
     },
     "X>0");
 
-// `--set key.path=value`, repeatable, one edit per occurrence (io/case_file.hpp).
+// `--set key.path=value`, repeatable, one edit per occurrence (case/reader.hpp).
 void add_set_option(CLI::App* cmd, std::vector<std::string>& sets) {
   cmd->add_option("--set", sets,
                   "edit the case: key.path=value (YAML value; repeatable), e.g. "
@@ -250,10 +251,15 @@ int main(int argc, char** argv) {
       "wave theory (swell waves H T d [--paddle flap --hinge l]), analysis (analyse), Goda's wall "
       "pressures (goda), a case's target wave (target)");
   waves->require_subcommand(0, 1);
-  const swell::WavesAnalyseCommand waves_analyse = swell::add_waves_analyse_command(*waves);
-  const swell::WavesPredictCommand waves_predict = swell::add_waves_predict_command(*waves);
-  const swell::WavesGodaCommand waves_goda = swell::add_waves_goda_command(*waves);
-  const swell::WavesTargetCommand waves_target = swell::add_waves_target_command(*waves);
+  // `swell waves analyse | predict | goda | target`: each file registers its own.
+  const std::vector<swell::Subcommand> waves_subcommands{
+      swell::add_waves_analyse_command(*waves), swell::add_waves_predict_command(*waves),
+      swell::add_waves_goda_command(*waves), swell::add_waves_target_command(*waves)};
+  const auto chosen_waves = [&]() -> const swell::Subcommand* {
+    for (const auto& c : waves_subcommands)
+      if (c.chosen()) return &c;
+    return nullptr;
+  };
   auto* waves_h = waves->add_option("H", waves_opt.height, "wave height [m]")->check(kPositive);
   waves->add_option("T", waves_opt.period, "wave period [s]")->check(kPositive);
   waves->add_option("d", waves_opt.depth, "still-water depth [m]")->check(kPositive);
@@ -390,14 +396,8 @@ int main(int argc, char** argv) {
     } else if (*foam) {
       const swell::CaseSpec spec = swell::load_case_file(foam_case, foam_sets);
       swell::run_foam_command(spec, foam_opt, std::cout);
-    } else if (waves_analyse.chosen()) {  // swell waves analyse
-      waves_analyse.run(std::cout);
-    } else if (waves_predict.chosen()) {  // swell waves predict
-      waves_predict.run(std::cout);
-    } else if (waves_goda.chosen()) {  // swell waves goda
-      waves_goda.run(std::cout);
-    } else if (waves_target.chosen()) {  // swell waves target
-      waves_target.run(std::cout);
+    } else if (const swell::Subcommand* w = chosen_waves()) {  // swell waves analyse, ...
+      w->run(std::cout);
     } else if (*help) {
       if (help_key.empty()) {
         std::cout << swell::case_schema::reference_markdown();

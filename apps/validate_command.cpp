@@ -13,10 +13,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "apps/case_runner.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
+#include "foam/foam.hpp"
 #include "io/resources.hpp"
-#include "validation/foam.hpp"
+#include "run/run.hpp"
 #include "validation/validation_manifest.hpp"
 #include "validation/validation_report.hpp"
 #include "validation/wave_theory.hpp"

@@ -55,7 +55,7 @@ struct ValidateOptions {
   int np = 1;                     // OpenFOAM processes
   double end_time = -1.0;         // shorten runs (CI); < 0: the manifest's / case's
   bool progress = true;           // SPH progress line on stderr
-  std::vector<std::string> sets;  // --set key.path=value edits of the case (io/case_file.hpp)
+  std::vector<std::string> sets;  // --set key.path=value edits of the case (case/reader.hpp)
 };
 
 struct ValidateSummary {

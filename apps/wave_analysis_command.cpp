@@ -10,7 +10,8 @@
 
 #include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
-#include "validation/wave_analysis.hpp"
+#include "validation/gauge_column.hpp"
+#include "waves/analysis.hpp"
 
 namespace swell {
 namespace {
@@ -331,11 +332,7 @@ void run_waves_analyse(const WavesAnalyseOptions& opt, std::ostream& out) {
   out << rep.str();
 }
 
-bool WavesAnalyseCommand::chosen() const {
-  return app_->parsed();
-}
-
-WavesAnalyseCommand add_waves_analyse_command(CLI::App& waves) {
+Subcommand add_waves_analyse_command(CLI::App& waves) {
   auto opt = std::make_shared<WavesAnalyseOptions>();
   auto* a = waves.add_subcommand(
       "analyse", "analyse gauge records: zero crossing, harmonics, spectrum, reflection");
@@ -363,7 +360,7 @@ WavesAnalyseCommand add_waves_analyse_command(CLI::App& waves) {
   a->add_option("--fmax", opt->fmax, "band end [Hz]");
   a->add_option("--gravity", opt->gravity, "g [m/s^2] (default 9.81)");
   a->add_option("--csv", opt->csv, "write the spectra to this CSV file");
-  return WavesAnalyseCommand(a, opt);
+  return Subcommand(a, [opt](std::ostream& out) { run_waves_analyse(*opt, out); });
 }
 
 }  // namespace swell

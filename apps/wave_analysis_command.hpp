@@ -1,14 +1,15 @@
 // `swell waves analyse FILE.csv --gauge NAME ...`: zero-crossing statistics, harmonic
 // amplitudes, the Welch spectrum and its parameters of a gauge column, and with --reflection
 // the Mansard-Funke incident/reflected separation of three gauge columns
-// (validation/wave_analysis.hpp does the maths).
+// (waves/analysis.hpp does the maths).
 #pragma once
 
 #include <iosfwd>
 #include <limits>
-#include <memory>
 #include <string>
 #include <utility>
+
+#include "apps/subcommand.hpp"
 
 namespace CLI {
 class App;
@@ -41,19 +42,7 @@ void run_waves_analyse(const WavesAnalyseOptions& opt, std::ostream& out);
 
 // The `analyse` subcommand added to a `waves` command. Parsing fills the options it owns; the
 // caller runs it after parsing (inside its own error handling) when chosen() is true.
-class WavesAnalyseCommand {
- public:
-  WavesAnalyseCommand(CLI::App* app, std::shared_ptr<WavesAnalyseOptions> opt)
-      : app_(app), opt_(std::move(opt)) {}
-  bool chosen() const;
-  void run(std::ostream& out) const { run_waves_analyse(*opt_, out); }
-  const WavesAnalyseOptions& options() const { return *opt_; }
-
- private:
-  CLI::App* app_;
-  std::shared_ptr<WavesAnalyseOptions> opt_;
-};
-
-WavesAnalyseCommand add_waves_analyse_command(CLI::App& waves);
+// Adds `swell waves analyse` to `waves`.
+Subcommand add_waves_analyse_command(CLI::App& waves);
 
 }  // namespace swell

@@ -10,7 +10,8 @@
 
 #include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
-#include "validation/wave_analysis.hpp"
+#include "validation/gauge_column.hpp"
+#include "waves/analysis.hpp"
 #include "waves/record.hpp"
 
 namespace swell {
@@ -175,11 +176,7 @@ void run_waves_predict(const WavesPredictOptions& opt, std::ostream& out) {
   out << rep.str();
 }
 
-bool WavesPredictCommand::chosen() const {
-  return app_->parsed();
-}
-
-WavesPredictCommand add_waves_predict_command(CLI::App& waves) {
+Subcommand add_waves_predict_command(CLI::App& waves) {
   auto opt = std::make_shared<WavesPredictOptions>();
   auto* a = waves.add_subcommand(
       "predict", "linear-theory surface elevation from a measured paddle record (and probes)");
@@ -195,7 +192,7 @@ WavesPredictCommand add_waves_predict_command(CLI::App& waves) {
   a->add_option("--fmax", opt->fmax, "drop components above this frequency [Hz]");
   a->add_option("--gravity", opt->gravity, "g [m/s^2] (default 9.81)");
   a->add_option("--csv", opt->csv, "write the prediction (and probes) to this CSV file");
-  return WavesPredictCommand(a, opt);
+  return Subcommand(a, [opt](std::ostream& out) { run_waves_predict(*opt, out); });
 }
 
 }  // namespace swell

@@ -6,8 +6,9 @@
 
 #include <iosfwd>
 #include <limits>
-#include <memory>
 #include <string>
+
+#include "apps/subcommand.hpp"
 
 namespace CLI {
 class App;
@@ -33,18 +34,7 @@ struct WavesPredictOptions {
 // Prints the report on `out`; bad input throws std::invalid_argument naming the file or option.
 void run_waves_predict(const WavesPredictOptions& opt, std::ostream& out);
 
-class WavesPredictCommand {
- public:
-  WavesPredictCommand(CLI::App* app, std::shared_ptr<WavesPredictOptions> opt)
-      : app_(app), opt_(std::move(opt)) {}
-  bool chosen() const;
-  void run(std::ostream& out) const { run_waves_predict(*opt_, out); }
-
- private:
-  CLI::App* app_;
-  std::shared_ptr<WavesPredictOptions> opt_;
-};
-
-WavesPredictCommand add_waves_predict_command(CLI::App& waves);
+// Adds `swell waves predict` to `waves`.
+Subcommand add_waves_predict_command(CLI::App& waves);
 
 }  // namespace swell

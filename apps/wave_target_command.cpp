@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "apps/validate_command.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
 #include "io/provenance.hpp"
 #include "io/vtk_writer.hpp"
 
@@ -72,11 +72,7 @@ void run_waves_target(const WavesTargetOptions& opt, std::ostream& out) {
   }
 }
 
-bool WavesTargetCommand::chosen() const {
-  return app_->parsed();
-}
-
-WavesTargetCommand add_waves_target_command(CLI::App& waves) {
+Subcommand add_waves_target_command(CLI::App& waves) {
   auto opt = std::make_shared<WavesTargetOptions>();
   auto* a = waves.add_subcommand(
       "target", "the wave a case's wavemaker is meant to make, at distances from the paddle");
@@ -87,7 +83,7 @@ WavesTargetCommand add_waves_target_command(CLI::App& waves) {
   a->add_option("--body", opt->body, "the wavemaker body (default: the first with a wave)");
   a->add_option("--set", opt->sets, "case edit key=value, as `swell run --set`");
   a->add_option("--csv", opt->csv, "write the CSV here (default: print it)");
-  return WavesTargetCommand(a, opt);
+  return Subcommand(a, [opt](std::ostream& out) { run_waves_target(*opt, out); });
 }
 
 }  // namespace swell

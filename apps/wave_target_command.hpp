@@ -6,9 +6,10 @@
 #pragma once
 
 #include <iosfwd>
-#include <memory>
 #include <string>
 #include <vector>
+
+#include "apps/subcommand.hpp"
 
 namespace CLI {
 class App;
@@ -30,18 +31,7 @@ struct WavesTargetOptions {
 // throws std::invalid_argument or CaseError naming the file, body or option.
 void run_waves_target(const WavesTargetOptions& opt, std::ostream& out);
 
-class WavesTargetCommand {
- public:
-  WavesTargetCommand(CLI::App* app, std::shared_ptr<WavesTargetOptions> opt)
-      : app_(app), opt_(std::move(opt)) {}
-  bool chosen() const;
-  void run(std::ostream& out) const { run_waves_target(*opt_, out); }
-
- private:
-  CLI::App* app_;
-  std::shared_ptr<WavesTargetOptions> opt_;
-};
-
-WavesTargetCommand add_waves_target_command(CLI::App& waves);
+// Adds `swell waves target` to `waves`.
+Subcommand add_waves_target_command(CLI::App& waves);
 
 }  // namespace swell

@@ -31,7 +31,7 @@ int run_waves(const WavesOptions& opt, std::ostream& out) {
   }
   if (opt.order != 1 && opt.order != 2)
     throw std::invalid_argument("--order: expected 1 or 2, got " + std::to_string(opt.order));
-  // As a case file's `order: 2` on a flap paddle (io/case_motion): refused, not just warned.
+  // As a case file's `order: 2` on a flap paddle (case/motion): refused, not just warned.
   if (opt.order == 2 && paddle.type == waves::PaddleGeometry::Type::Flap)
     throw std::invalid_argument(
         "--order 2: second-order generation is implemented for pistons only; use --order 1 "

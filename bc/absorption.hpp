@@ -13,7 +13,8 @@
 // the shallow-water limit of w / F (F -> kd). The tuned gain is exact at the target's peak
 // frequency w_p (a regular wave's frequency, Tp of a spectrum) and the shallow gain at long
 // waves; S&K's frequency-dependent filter is approximated by this constant gain, so waves far
-// from w_p are absorbed less well (the absorbed fraction is measured in the tests and README).
+// from w_p are absorbed less well (the absorbed fraction is measured in the tests and
+// docs/method/boundaries.md#active-absorption-at-a-piston).
 //
 // Filters (the "documented filter" of the issue), with T_ref the target's peak period (a
 // solitary wave: Goring's duration):

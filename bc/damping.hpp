@@ -59,7 +59,7 @@ inline double damping_ramp(DampingRamp ramp, double s) {
   return ramp == DampingRamp::Quadratic ? s * s : 0.5 * (1.0 - std::cos(std::numbers::pi * s));
 }
 
-// One damping zone as given in the case file (io/case_file.cpp reads `damping:`). SI units.
+// One damping zone as given in the case file (case/reader.cpp reads `damping:`). SI units.
 struct DampingZone {
   // sigma_max [1/s]: the value DualSPHysics' damping examples use (redumax = 10). Averaged over
   // the zone's length sigma is sigma_max / 3 with the quadratic ramp, sigma_max / 2 with the

@@ -68,7 +68,7 @@ std::map<std::uint16_t, double> fluid_levels(const ParticleSet<D>& ps, const Vec
 }
 
 // What initialise_hydrostatic takes from the whole case when `ps` is one share of it (a set-up
-// distributed over ranks, io/case_setup.cpp): the fluid bodies' levels and the box of every
+// distributed over ranks, case/setup.cpp): the fluid bodies' levels and the box of every
 // particle (the sort's grid), so each share sorts and reads as the whole set would.
 template <int D>
 struct HydrostaticFrame {

@@ -23,7 +23,7 @@
 //         on fixed bodies). It does not differentiate the SPH density field, whose gradient is
 //         noise where the ghost's support is thin (a wedge of water on a beach, a film): there
 //         the linear rule let water sink onto the wall and shot it off again (measured in
-//         README "Beaches and thin water").
+//         docs/method/boundaries.md#beaches-and-thin-water-pressure-hydrostatic).
 // Wall velocity seen by the fluid (MdbcSlip): the body's (default, as DualSPHysics), no-slip
 // 2 v_body - v_g, or free-slip (v_g with its normal component mirrored about the body's), v_g
 // from the same interpolation. The body's velocity is restored after the force stage, so the

@@ -1,6 +1,6 @@
 // Prescribed rigid-body motion of boundary bodies: a piston or flap wave paddle, a swaying tank.
 //
-// A MotionSpec (plain data, read from a body's `motion:` key by io/case_motion.cpp) becomes a
+// A MotionSpec (plain data, read from a body's `motion:` key by case/motion.cpp) becomes a
 // MotionLaw, a value type that gives the body's pose at any time t as a pure function of t, so a
 // run continued from a checkpoint moves its bodies exactly as the uninterrupted run does. The
 // pose is a translation d(t) and a rotation by theta(t) about the spec's axis through its centre;
@@ -22,7 +22,7 @@
 //   there at the first placement.
 //
 // Units inside MotionSpec are SI throughout: metres, seconds, radians (the case file takes
-// degrees for angles, phases and rates; io/case_motion.cpp converts).
+// degrees for angles, phases and rates; case/motion.cpp converts).
 #pragma once
 
 #include <Eigen/Core>

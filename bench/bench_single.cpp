@@ -7,8 +7,8 @@
 #include <ostream>
 
 #include "bench/bench_run.hpp"
-#include "io/case_file.hpp"
-#include "io/case_setup.hpp"
+#include "case/reader.hpp"
+#include "case/setup.hpp"
 
 namespace swell {
 namespace {

@@ -1,5 +1,5 @@
 // One benchmark measurement (`swell bench --single`, or the lean `swell_bench_run`): builds the
-// case's particles (io/case_setup.hpp), steps it with no output (bench/bench_run.hpp) and prints
+// case's particles (case/setup.hpp), steps it with no output (bench/bench_run.hpp) and prints
 // one `bench-result` line. Kept apart from the driver (apps/bench_command) so the lean runner
 // links only the solver, the geometry and the case reader.
 #pragma once

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Weak-scaling projection of `mpirun -np P swell run` (issue #16): a model, not a measurement.
 
-Inputs measured here (README "Several ranks (MPI)"; bench/RESULTS.md): the cost of one
+Inputs measured here (docs/user-guide/several-ranks.md; bench/RESULTS.md): the cost of one
 particle-step on one thread (B3D, 1.60 M particle-steps/s), the record sizes the exchange sends
 (3D: 103 B per halo image in a build, 56 B in a refresh), the calls per step: 2 migrations and 5 halo
 exchanges (2 builds, 3 refreshes), each two rounds of point-to-point messages with the two

@@ -1,4 +1,4 @@
-// libFuzzer harness: the case-file parser (io/case_file) on arbitrary bytes. Every input must
+// libFuzzer harness: the case-file parser (case/reader) on arbitrary bytes. Every input must
 // end in a CaseSpec or a CaseError; a crash, a sanitizer report, a hang or unbounded memory is
 // a finding. Built with -DSWELL_FUZZ=ON (clang), run by scripts/fuzz.
 #include "fuzz/fuzz_targets.hpp"

@@ -14,9 +14,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "case/reader.hpp"
+#include "case/setup.hpp"
 #include "geometry/mesh_solid.hpp"
-#include "io/case_file.hpp"
-#include "io/case_setup.hpp"
 
 namespace swell::fuzz {
 

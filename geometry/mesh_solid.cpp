@@ -62,7 +62,7 @@ using Inside = CGAL::Side_of_triangle_mesh<Mesh, K>;
 using face_descriptor = Mesh::Face_index;
 using halfedge_descriptor = Mesh::Halfedge_index;
 
-// Bounds of `repair: true`'s self-intersection removal (README, Shapes).
+// Bounds of `repair: true`'s self-intersection removal (docs/user-guide/case-files.md#shapes).
 constexpr std::size_t kMaxRepairFaces = 200000;
 constexpr std::size_t kMaxRepairPairs = 5000;
 constexpr double kMinRepairEdge = 1e-7;  // shortest edge / mesh size (float STL: ~6e-8)

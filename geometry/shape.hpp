@@ -13,9 +13,10 @@
 
 namespace swell::geometry {
 
-// Coordinates geometry may reach, in metres from the origin (README, Shapes): far beyond any
-// coastal model, and small enough that lattice indices and CGAL's arithmetic stay well inside
-// their ranges. Mesh vertices beyond it are refused at load, other shapes at the fill.
+// Coordinates geometry may reach, in metres from the origin
+// (docs/user-guide/case-files.md#shapes): far beyond any coastal model, and small enough that
+// lattice indices and CGAL's arithmetic stay well inside their ranges. Mesh vertices beyond it
+// are refused at load, other shapes at the fill.
 inline constexpr double kMaxCoordinate = 1.0e6;
 
 struct Aabb {

@@ -1,4 +1,4 @@
-// A shape as described in a case file: plain data, parsed by io/case_file and turned into a
+// A shape as described in a case file: plain data, parsed by case/reader and turned into a
 // geometry::Shape by geometry/shape_factory (build_shape).
 #pragma once
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "io/case_spec.hpp"
+#include "case/spec.hpp"
 
 namespace swell {
 

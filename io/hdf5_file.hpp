@@ -171,7 +171,7 @@ struct SnapshotData {
 template <int D>
 SnapshotData<D> read_snapshot(const std::string& path, const SnapshotInfo& info);
 
-// What a checkpoint says about the case that wrote it (io/case_identity.hpp).
+// What a checkpoint says about the case that wrote it (case/identity.hpp).
 struct CaseTag {
   std::string identity, name, file;
 };

@@ -378,7 +378,7 @@ void migrate(ParticleSet<D>& ps, const Slabs& slabs, const Comm& comm, Migration
 }
 
 // Sends every active particle of `ps` to the rank whose slab holds it: a set-up distributed
-// over the ranks, or a checkpoint read in blocks of rows (apps/run_loop.cpp). The records
+// over the ranks, or a checkpoint read in blocks of rows (run/run.cpp). The records
 // travel in rounds of at most `chunk` bytes received per rank (MPI counts and offsets are
 // ints); the staying
 // particles are compacted in place (no scratch the size of the set) and the arrivals appended,

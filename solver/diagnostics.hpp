@@ -57,7 +57,7 @@ double surge_front(const ParticleSet<D>& ps, const Vec<D>& up, double floor, dou
 }
 
 // How the whole-run checks combine what each process saw. One process: as it is. A decomposed
-// run passes a reducer over its ranks with the same calls (apps/run_view.hpp), and every rank
+// run passes a reducer over its ranks with the same calls (run/run_view.hpp), and every rank
 // then gets the same answers.
 struct SingleProcess {
   double sum(double x) const { return x; }
@@ -70,8 +70,9 @@ struct SingleProcess {
   }
 };
 
-// When a run counts as blown up (case file `watchdog:`, README "Watchdog"). Fractions are of
-// the initial fluid mass; densities are factors of rho0; the penetration depth is in dp.
+// When a run counts as blown up (case file `watchdog:`, docs/user-guide/troubleshooting.md).
+// Fractions are of the initial fluid mass; densities are factors of rho0; the penetration depth
+// is in dp.
 struct WatchdogLimits {
   int every = 10;                          // steps between checks (also before each checkpoint)
   double warn_excluded_fraction = 0.001;   // warn once when this much fluid mass is gone
@@ -92,7 +93,7 @@ class Watchdog {
   // `floor`: the lowest initial fluid level along "up" (CaseSetup::floor): water starting below
   // every wall is not a leak. The initial fluid mass counts excluded particles too (restart).
   // `sim`: the Simulation, or anything with its particles(), params(), time(), steps(),
-  // excluded(), excluded_faces() and worst_density_exclusion() (apps/run_view.hpp). `red`
+  // excluded(), excluded_faces() and worst_density_exclusion() (run/run_view.hpp). `red`
   // combines the processes of a decomposed run (each passes its own particles).
   template <class Sim, class Reduce = SingleProcess>
   Watchdog(const WatchdogLimits& limits, const Sim& sim, double floor, const Reduce& red = {})

@@ -325,7 +325,7 @@ double water_height_integral(const ParticleSet<D>& ps, const K& kernel, const Ve
 // not summed, so a layer two or more rows thick reads about 0.76 rho0 at that offset, a film of
 // one particle row about 0.52 rho0 and a lone particle at most 0.28 rho0 (Wendland, h = 1.41 dp,
 // particles on a dp lattice; the run's gauges call it with h = sqrt(D) dp whatever its coefh,
-// apps/gauge_set.cpp). The default fraction 0.3 thus counts a one-row film as wet and a
+// run/gauge_set.cpp). The default fraction 0.3 thus counts a one-row film as wet and a
 // lone particle as dry, and places the end of a layer cut normal to the slope within 0.2 dp of
 // its edge (the last particle + dp/2; test_gauges measures it).
 // The highest wet sample is found walking down from the top of the fluid along the line; the

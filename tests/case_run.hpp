@@ -1,4 +1,4 @@
-// Shared by the tests that run whole cases through run_case (apps/case_runner.hpp): a case
+// Shared by the tests that run whole cases through run_case (run/run.hpp): a case
 // given as YAML text, run quietly into a folder.
 #pragma once
 
@@ -7,9 +7,9 @@
 #include <sstream>
 #include <string>
 
-#include "apps/case_runner.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
 #include "io/hdf5_file.hpp"
+#include "run/run.hpp"
 
 namespace swell::test {
 

@@ -1,4 +1,4 @@
-// Tests for io/case_file: valid cases parse to the expected values and defaults, and each class
+// Tests for case/reader: valid cases parse to the expected values and defaults, and each class
 // of mistake in a case file is reported as "<file>:<line>: ..." naming the offending key.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "io/case_file.hpp"
-#include "io/model_names.hpp"
+#include "case/model_names.hpp"
+#include "case/reader.hpp"
 
 namespace swell {
 namespace {
@@ -242,7 +242,7 @@ TEST(CaseFile, LoadsFromFile) {
   EXPECT_EQ(spec.bodies[0].line, 5);
 }
 
-// `swell run --set`: edits of a case file from the command line (io/case_file.hpp).
+// `swell run --set`: edits of a case file from the command line (case/reader.hpp).
 TEST(CaseFileSets, EditsCreateReplaceAndAppendAndAreReadLikeTheFile) {
   const auto path = std::filesystem::temp_directory_path() /
                     ("swell_case_" + std::to_string(::getpid()) + "_sets.yaml");

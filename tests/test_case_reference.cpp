@@ -1,5 +1,5 @@
 // The case-file schema against the reader, the generated reference against docs/, and the run
-// header's derived quantities against the solver (io/case_schema.hpp, apps/run_loop.cpp).
+// header's derived quantities against the solver (case/schema.hpp, run/run.cpp).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "apps/case_runner.hpp"
-#include "io/case_file.hpp"
-#include "io/case_schema.hpp"
-#include "io/case_setup.hpp"
-#include "io/model_names.hpp"
+#include "case/model_names.hpp"
+#include "case/reader.hpp"
+#include "case/schema.hpp"
+#include "case/setup.hpp"
+#include "run/run.hpp"
 #include "waves/spectrum.hpp"
 
 namespace {
@@ -459,7 +459,7 @@ TEST(CaseSchema, EveryMapRefusesKeysOutsideTheSchema) {
 }
 
 // The reader's own code names no key the schema lacks: every key literal in find(), require(),
-// number_pos(), child() and node["..."] of io/case_*.cpp is a schema key.
+// number_pos(), child() and node["..."] of case/*.cpp is a schema key.
 TEST(CaseSchema, ReaderSourcesNameOnlySchemaKeys) {
   std::set<std::string> known;
   for (const auto& k : schema::keys()) known.insert(std::string(k.name));
@@ -467,9 +467,8 @@ TEST(CaseSchema, ReaderSourcesNameOnlySchemaKeys) {
   const std::regex index(R"(\[\"([A-Za-z_0-9]+)\"\])");
   const std::regex last_literal(R"(\"([A-Za-z_0-9]+)\"\s*$)");
   int literals = 0;
-  for (const char* file : {"case_file.cpp", "case_gauges.cpp", "case_motion.cpp",
-                           "case_damping.cpp", "case_shapes.cpp"}) {
-    const std::string src = read_file(fs::path(SWELL_SOURCE_DIR) / "io" / file);
+  for (const char* file : {"reader.cpp", "gauges.cpp", "motion.cpp", "damping.cpp", "shapes.cpp"}) {
+    const std::string src = read_file(fs::path(SWELL_SOURCE_DIR) / "case" / file);
     ASSERT_FALSE(src.empty()) << file;
     std::vector<std::string> names;
     for (auto it = std::sregex_iterator(src.begin(), src.end(), call); it != std::sregex_iterator();
@@ -484,7 +483,7 @@ TEST(CaseSchema, ReaderSourcesNameOnlySchemaKeys) {
     for (const std::string& n : names) {
       ++literals;
       EXPECT_TRUE(known.count(n)) << "io/" << file << " reads key '" << n
-                                  << "', which the schema (io/case_schema.cpp) lacks";
+                                  << "', which the schema (case/schema.cpp) lacks";
     }
   }
   EXPECT_GT(literals, 100);
@@ -856,9 +855,10 @@ TEST(RunHeader, LaminarViscosityAddsTheViscousLimitAndGivenHswl) {
   EXPECT_EQ(layers.find("fewer"), std::string::npos) << layers;
 }
 
-// A wavemaker run names the two settings that were measured to damp a wave (README, Regular-wave
-// flume): a short smoothing length (coefh < 1.2) and artificial viscosity (alpha > 0.001, with
-// the kinematic viscosity it amounts to); the settings recommended there silence both.
+// A wavemaker run names the two settings that were measured to damp a wave
+// (docs/user-guide/waves.md#settings-for-wave-runs): a short smoothing length (coefh < 1.2) and
+// artificial viscosity (alpha > 0.001, with the kinematic viscosity it amounts to); the settings
+// recommended there silence both.
 TEST(RunHeader, WavemakerWarnsOfSettingsThatDampTheWave) {
   const auto text = [](const std::string& physics) {
     return "dim: 2\ndp: 0.02\nphysics: {" + physics +

@@ -1,4 +1,4 @@
-// The shape of the core (DESIGN.md "Core shape"): one field table that every per-particle
+// The shape of the core (ARCHITECTURE.md): one field table that every per-particle
 // operation iterates, step hooks carrying moving bodies through restarts bit for bit, and the
 // dependency rules between folders.
 #include <gtest/gtest.h>
@@ -9,10 +9,10 @@
 #include <sstream>
 #include <string>
 
-#include "apps/case_runner.hpp"
 #include "bc/moving_bodies.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
 #include "io/hdf5_file.hpp"
+#include "run/run.hpp"
 #include "tests/case_run.hpp"
 
 namespace swell {
@@ -201,9 +201,14 @@ TEST(MovingBodies, RestartRefusesAChangedMotion) {
   }
 }
 
-// solver/ includes nothing outside solver/ (Eigen, OpenMP and the standard library only); bc/
-// includes only solver/ and bc/.
-TEST(Layout, SolverAndBcIncludeNothingAboveThem) {
+// The floors (ARCHITECTURE.md): each folder includes only its own floor and the floors below
+// it. solver/ includes nothing outside solver/ (Eigen, OpenMP and the standard library only);
+// waves/ is pure maths; bc/ sees the solver and the wave maths; geometry/ the solver; case/ the
+// numerics and geometry; io/ (the data back end) the case's types; run/ everything below it;
+// foam/, validation/, verify/ and bench/ stand beside run/ and include neither it nor each
+// other; apps/ alone stands above them all ("swell/" is the build's generated version and
+// commit headers).
+TEST(Layout, EachFloorIncludesOnlyTheFloorsBelowIt) {
   const fs::path src(SWELL_SOURCE_DIR);
   const std::regex inc("#include\\s+\"([^\"]+)\"");
   auto check = [&](const std::string& folder, const std::vector<std::string>& allowed) {
@@ -227,8 +232,18 @@ TEST(Layout, SolverAndBcIncludeNothingAboveThem) {
     EXPECT_GT(files, 3) << folder;
   };
   check("solver", {"solver/"});
-  check("bc", {"solver/", "bc/", "waves/"});
   check("waves", {"waves/"});
+  check("bc", {"solver/", "bc/", "waves/"});
+  check("geometry", {"solver/", "geometry/"});
+  check("parallel", {"solver/", "parallel/"});
+  check("case", {"solver/", "waves/", "bc/", "geometry/", "case/"});
+  check("io", {"solver/", "case/", "io/", "swell/"});
+  check("run",
+        {"solver/", "waves/", "bc/", "geometry/", "case/", "io/", "parallel/", "run/", "swell/"});
+  check("foam", {"solver/", "waves/", "geometry/", "case/", "io/", "foam/"});
+  check("validation", {"solver/", "waves/", "geometry/", "case/", "io/", "validation/"});
+  check("verify", {"solver/", "waves/", "bc/", "geometry/", "case/", "io/", "verify/"});
+  check("bench", {"solver/", "waves/", "bc/", "geometry/", "case/", "io/", "bench/"});
   // The intrinsics live in one file of the solver.
   for (const auto& e : fs::recursive_directory_iterator(src / "solver")) {
     if (!e.is_regular_file()) continue;

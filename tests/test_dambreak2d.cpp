@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "apps/case_runner.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
+#include "run/run.hpp"
 #include "solver/diagnostics.hpp"
 
 namespace swell {

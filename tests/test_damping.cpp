@@ -5,7 +5,7 @@
 // by a piston runs into a zone instead of a wall and comes back much weaker; a still tank with
 // a beach moves much less while settling acts and ends it without a jolt (its motion along the
 // slope comes back afterwards); a restart with both on continues bitwise. Measured values are
-// printed (README, "Damping zones and settling").
+// printed (docs/method/boundaries.md#damping-zones-and-settling).
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -16,8 +16,8 @@
 #include <sstream>
 
 #include "bc/damping.hpp"
-#include "io/case_file.hpp"
-#include "io/case_setup.hpp"
+#include "case/reader.hpp"
+#include "case/setup.hpp"
 #include "io/hdf5_file.hpp"
 #include "tests/case_run.hpp"
 #include "tests/state_precision.hpp"
@@ -397,7 +397,8 @@ TEST(SettlingRun, StillTankWithABeach) {
   EXPECT_LT(m[1].ke_during, 0.5 * m[0].ke_during);
   EXPECT_LT(m[1].v_early, m[0].v_early);
   // ... and its end is no jolt: what the water does afterwards stays below the transient of the
-  // unsettled start (the motion the slope keeps driving comes back; see README).
+  // unsettled start (the motion the slope keeps driving comes back; see
+  // docs/method/boundaries.md#damping-zones-and-settling).
   EXPECT_LT(m[1].ke_peak_after, m[0].ke_peak);
   EXPECT_LT(m[1].v_late, m[0].v_early);
   EXPECT_LT(std::abs(m[0].drift), 0.25);

@@ -11,10 +11,10 @@
 #include <regex>
 #include <sstream>
 
-#include "apps/gauge_set.hpp"
-#include "io/case_file.hpp"
-#include "validation/foam.hpp"
-#include "validation/foam_plan.hpp"
+#include "case/reader.hpp"
+#include "foam/foam.hpp"
+#include "foam/plan.hpp"
+#include "run/gauge_set.hpp"
 
 namespace fs = std::filesystem;
 using namespace swell;
@@ -313,7 +313,7 @@ TEST(FoamCase, PostProcessingConvertsToTheSphCsvFormat) {
   const auto files = convert_foam_gauges(spec, opt, (dir / "gauges").string(), log);
   EXPECT_EQ(files.size(), 5u);
 
-  // Headers: the SPH run's column names (apps/gauge_set.cpp) for the same gauges.
+  // Headers: the SPH run's column names (run/gauge_set.cpp) for the same gauges.
   auto header = [](const std::string& text) {
     std::istringstream in(text);
     std::string line;

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "apps/case_runner.hpp"
-#include "io/case_file.hpp"
-#include "validation/foam.hpp"
+#include "case/reader.hpp"
+#include "foam/foam.hpp"
+#include "run/run.hpp"
 
 namespace fs = std::filesystem;
 using namespace swell;

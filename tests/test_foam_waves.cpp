@@ -10,9 +10,9 @@
 #include <numbers>
 #include <sstream>
 
-#include "io/case_file.hpp"
-#include "validation/foam.hpp"
-#include "validation/foam_plan.hpp"
+#include "case/reader.hpp"
+#include "foam/foam.hpp"
+#include "foam/plan.hpp"
 #include "waves/dispersion.hpp"
 
 namespace fs = std::filesystem;

@@ -13,9 +13,9 @@
 #include <random>
 #include <string>
 
-#include "apps/case_runner.hpp"
-#include "apps/gauge_set.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
+#include "run/gauge_set.hpp"
+#include "run/run.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/gauges.hpp"
 #include "solver/physics/kernels.hpp"

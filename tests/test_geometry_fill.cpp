@@ -25,12 +25,12 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "apps/case_runner.hpp"
 #include "apps/fill_command.hpp"
+#include "case/reader.hpp"
 #include "geometry/lattice_fill.hpp"
 #include "geometry/primitives.hpp"
 #include "geometry/shape_factory.hpp"
-#include "io/case_file.hpp"
+#include "run/run.hpp"
 
 namespace swell::geometry {
 namespace {

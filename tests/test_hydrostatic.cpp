@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "apps/case_runner.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
+#include "run/run.hpp"
 #include "solver/diagnostics.hpp"
 
 namespace swell {

@@ -13,16 +13,16 @@
 #include <sstream>
 #include <tuple>
 
-#include "apps/case_runner.hpp"
 #include "bc/mdbc.hpp"
 #include "bc/moving_bodies.hpp"
+#include "case/geometry.hpp"
+#include "case/reader.hpp"
+#include "case/setup.hpp"
 #include "geometry/mesh_solid.hpp"
 #include "geometry/primitives.hpp"
 #include "geometry/wall_normals.hpp"
-#include "io/case_file.hpp"
-#include "io/case_geometry.hpp"
-#include "io/case_setup.hpp"
 #include "io/hdf5_file.hpp"
+#include "run/run.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/physics/kernels.hpp"
 #include "tests/case_run.hpp"
@@ -663,9 +663,9 @@ StillTankResult run_still_tank(double dp, double t_end, const std::string& bound
 // the lowest fluid row stays within 0.6 dp of its initial height dp/2. Both are printed for
 // DBC beside it (not asserted). Against rho0 g d the fluid itself reads ~1.3 % high here
 // (h = 1.41 dp; the same with DBC, and at dp / 2): part of it is the symmetric gradient's
-// lattice sum, 0.992 at this h, so a balanced column needs more pressure (README, Wall loads:
-// at dp / 2 with coefh 1.5 it reads +0.8 %). The wall-vs-rho0 g d figure is printed, and
-// bounded at 3 %.
+// lattice sum, 0.992 at this h, so a balanced column needs more pressure
+// (docs/validation/still_tank.md: at dp / 2 with coefh 1.5 it reads +0.8 %). The wall-vs-rho0
+// g d figure is printed, and bounded at 3 %.
 TEST(MdbcRun, StillTank2DWallPressureAndGap) {
   const double dp = 0.02;
   const auto dbc = run_still_tank<2>(dp, 10.0, "dbc");

@@ -1,4 +1,4 @@
-// Tests for bc/motion (prescribed rigid-body motion) and its case-file reader io/case_motion:
+// Tests for bc/motion (prescribed rigid-body motion) and its case-file reader case/motion:
 // velocities are the derivatives of the positions, each law matches its closed form, rotations
 // are rigid and periodic, tables are interpolated to a stated accuracy, the motion is frozen
 // after stop, swept bounds contain the motion, and case-file mistakes name file and line.
@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "bc/motion.hpp"
-#include "io/case_file.hpp"
-#include "io/case_motion.hpp"
+#include "case/motion.hpp"
+#include "case/reader.hpp"
 
 namespace swell {
 namespace {

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "apps/case_runner.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
+#include "run/run.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/gauges.hpp"
 #include "tests/state_precision.hpp"

@@ -15,8 +15,8 @@
 #include <sstream>
 #include <thread>
 
-#include "io/case_file.hpp"
-#include "io/case_identity.hpp"
+#include "case/identity.hpp"
+#include "case/reader.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/run_folder.hpp"
 #include "tests/child_process.hpp"

@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "case/setup.hpp"
 #include "child_process.hpp"
-#include "io/case_setup.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/provenance.hpp"
 #include "io/run_info.hpp"

@@ -11,10 +11,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "apps/case_runner.hpp"
 #include "apps/probe_command.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
 #include "io/hdf5_file.hpp"
+#include "run/run.hpp"
 #include "solver/gauges.hpp"
 #include "solver/physics/kernels.hpp"
 #include "tests/case_run.hpp"

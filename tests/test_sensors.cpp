@@ -12,8 +12,8 @@
 #include <random>
 #include <sstream>
 
-#include "apps/gauge_set.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
+#include "run/gauge_set.hpp"
 #include "solver/gauges.hpp"
 #include "solver/physics/kernels.hpp"
 

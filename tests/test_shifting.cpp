@@ -13,8 +13,8 @@
 #include <random>
 #include <sstream>
 
-#include "io/case_file.hpp"
-#include "io/case_setup.hpp"
+#include "case/reader.hpp"
+#include "case/setup.hpp"
 #include "io/hdf5_file.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/physics/kernels.hpp"

@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "apps/validate_command.hpp"
-#include "io/case_file.hpp"
-#include "validation/foam.hpp"
+#include "case/reader.hpp"
+#include "foam/foam.hpp"
 #include "validation/validation_manifest.hpp"
 #include "validation/validation_report.hpp"
 

@@ -10,7 +10,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
 #include "io/hdf5_file.hpp"
 #include "tests/case_run.hpp"
 #include "tests/child_process.hpp"

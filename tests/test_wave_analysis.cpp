@@ -1,4 +1,4 @@
-// Wave analysis (validation/wave_analysis.hpp) on synthetic records whose answers are known:
+// Wave analysis (waves/analysis.hpp) on synthetic records whose answers are known:
 // zero-crossing statistics, least-squares harmonics, Welch spectra (Parseval, a sinusoid, a
 // JONSWAP sea), the Mansard-Funke three-gauge separation (regular and irregular waves with a
 // known reflection coefficient), gauge CSV columns, and `swell waves analyse` end to end.
@@ -15,7 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "validation/wave_analysis.hpp"
+#include "validation/gauge_column.hpp"
+#include "waves/analysis.hpp"
 #include "waves/dispersion.hpp"
 #include "waves/theory.hpp"
 

@@ -13,8 +13,8 @@
 
 #include "apps/wave_target_command.hpp"
 #include "bc/absorption.hpp"
+#include "case/reader.hpp"
 #include "case_run.hpp"
-#include "io/case_file.hpp"
 #include "validation/metrics.hpp"
 #include "waves/theory.hpp"
 #include "waves/wavemaker.hpp"
@@ -356,19 +356,19 @@ double fitted_period(const Series& s, double w0, double t0, double t1) {
 
 // A 2D piston flume, depth 0.3 m, H = 0.04 m, T = 1 s (kd = 1.37, a2/a1 = 0.075: second-order
 // generation), dp = 0.015 m (H/dp = 2.7: coarse), coefsound 10 (half the steps of the default
-// 20; the flow's Mach number stays below 0.02), the wave settings of the README's regular-wave
-// flume (coefh 1.5, 4 wall layers, water's laminar viscosity), mDBC walls, ramp 1 s, a damping
-// zone over the last 1.3 m (1 L) so that the window can be five periods of the steady wave,
-// 3-8 s. The first gauge stands 0.45 m (1.5 d, 0.33 L) from the paddle, past its evanescent
-// modes (the first, k1 = 9.08 rad/m from w^2 = -g k1 tan k1 d, decays to 1.7 % there); a second
-// one at 0.9 m (0.66 L).
+// 20; the flow's Mach number stays below 0.02), the wave settings of
+// docs/user-guide/waves.md#settings-for-wave-runs (coefh 1.5, 4 wall layers, water's laminar
+// viscosity), mDBC walls, ramp 1 s, a damping zone over the last 1.3 m (1 L) so that the window
+// can be five periods of the steady wave, 3-8 s. The first gauge stands 0.45 m (1.5 d, 0.33 L) from
+// the paddle, past its evanescent modes (the first, k1 = 9.08 rad/m from w^2 = -g k1 tan k1 d,
+// decays to 1.7 % there); a second one at 0.9 m (0.66 L).
 //
 // Measured here (first-harmonic height 2 a1 at 0.45 / 0.9 m, 1 thread each):
 //   mDBC dp 0.015 (this test)  -1.1 / -5.2 %      DBC dp 0.015  -4.0 / -6.9 %
 //   mDBC dp 0.01               -2.3 / -4.5 %      DBC dp 0.01   -4.8 / -5.7 %
 // DBC is 4-5 % low by the first gauge whatever the dp here: the gap between the plate and the fluid
 // breathes under the paddle's pressure by a fraction of dp, which is half the stroke (0.031 m)
-// at dp 0.015 (README, Regular-wave flume: -2.4 % at 0.25 L with H/dp 5, stroke 7 dp). The
+// at dp 0.015 (docs/validation/wave_decay.md: -2.4 % at 0.25 L with H/dp 5, stroke 7 dp). The
 // further loss to 0.66 L is numerical decay of a wave this coarse (2-3 % per wavelength at H/dp
 // 5-10 with these settings). So the issue's test target, H within 5 %, is asserted at the first
 // gauge; the second gets 10 %, which catches a return to coefh 1 with artificial viscosity 0.01
@@ -425,8 +425,9 @@ output: {every: 1.0, vtk: false, gauge_every: 0.01}
 // Active absorption (bc/absorption.hpp) on a solitary wave: the wave runs to the end wall,
 // comes back and meets the paddle, which has finished its stroke. A paddle at rest reflects it
 // whole (measured at dp 0.01 in a 0.2 m deep flume: the third pass past the mid gauge is 1.00
-// of the second, README); an absorbing paddle must take at least half of it (the issue's target
-// for AWAS), and its correction must be a real stroke (not a zero that passes by accident).
+// of the second, docs/method/boundaries.md#active-absorption-at-a-piston); an absorbing paddle
+// must take at least half of it (the issue's target for AWAS), and its correction must be a real
+// stroke (not a zero that passes by accident).
 TEST(WaveAbsorption, AbsorbingPaddleTakesTheReturningSolitaryWave) {
   const std::string text = R"(dim: 2
 dp: 0.01

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "apps/validate_command.hpp"
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
 #include "validation/metrics.hpp"
 #include "validation/validation_manifest.hpp"
 #include "validation/wave_theory.hpp"

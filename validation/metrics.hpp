@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "waves/window.hpp"
+
 namespace swell {
 
 // One quantity against time. Values may be NaN (a dry pressure probe, an empty CSV cell).
@@ -53,12 +55,6 @@ double interpolate(const Series& s, double t);
 
 // Returns `s` with t -> t * time_scale and v -> v * value_scale (normalisation).
 Series scaled(const Series& s, double time_scale, double value_scale);
-
-struct Window {
-  double t0 = -std::numeric_limits<double>::infinity();
-  double t1 = std::numeric_limits<double>::infinity();
-  bool contains(double t) const { return t >= t0 && t <= t1; }
-};
 
 // Normalised RMS error over a window:
 //   NRMSE = sqrt(mean_i (s(t_i) - r_i)^2) / (max_i r_i - min_i r_i)

@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-#include "io/case_file.hpp"
+#include "case/reader.hpp"
 #include "io/resources.hpp"
 
 namespace swell {

@@ -1,8 +1,9 @@
 // A validation manifest, validation/<NAME>/validation.yaml: which case file, which reference
 // data and how its columns map onto the case's gauges, how each quantity is normalised, the
 // metric windows, the targets (reported, never tuned to), the resolutions of the SPH and
-// OpenFOAM runs and where their committed results live. The format is documented in the
-// README (section Validation). Paths in a manifest are relative to the manifest's folder.
+// OpenFOAM runs and where their committed results live. The format is documented in
+// docs/validation/how-it-works.md#manifest. Paths in a manifest are relative to the manifest's
+// folder.
 #pragma once
 
 #include <map>
@@ -11,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "io/case_spec.hpp"
+#include "case/spec.hpp"
 #include "validation/metrics.hpp"
 
 namespace swell {

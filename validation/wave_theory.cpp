@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "io/case_geometry.hpp"
+#include "case/geometry.hpp"
 #include "waves/dispersion.hpp"
 #include "waves/wavemaker.hpp"
 

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "io/case_spec.hpp"
+#include "case/spec.hpp"
 #include "validation/metrics.hpp"
 
 namespace swell {

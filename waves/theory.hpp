@@ -30,7 +30,8 @@ double solitary_elevation(double height, double depth, double x, double t, doubl
 //   eta2 = a_i a_j [G+ cos(theta_i + theta_j) + G- cos(theta_i - theta_j)]   (i != j)
 // and, for one component with itself, a_i^2 G+(i, i) / 2 cos 2 theta_i (Stokes' second
 // harmonic). G from the second-order potential problem (the kernels of Sharma & Dean 1981, in the
-// form derived in the README, "Wavemakers"): with W = omega_i +- omega_j, K = k_i +- k_j,
+// form derived in docs/user-guide/waves.md#wavemakers-motion-type-wave): with
+// W = omega_i +- omega_j, K = k_i +- k_j,
 //   Q = g^2 k_i k_j / (omega_i omega_j),
 //   R = -W (Q -+ omega_i omega_j) - [(g^2 k_i^2 - omega_i^4) / omega_i +- (g^2 k_j^2 -
 //       omega_j^4) / omega_j] / 2,
@@ -61,7 +62,7 @@ double subharmonic_flux(double omega_i, double k_i, double omega_j, double k_j, 
 // subharmonic generation; Sand 1982), exact as the band narrows. Left out (Schaffer 1996 keeps
 // them): the first-order evanescent modes' elevation at the paddle in X1 eta1(0) (in
 // quadrature; of order (k_i - k_j) d relative to P) and the near field's second-order volume;
-// both grow with the pair's separation (README, "Wavemakers").
+// both grow with the pair's separation (docs/user-guide/waves.md#wavemakers-motion-type-wave).
 double subharmonic_piston(double omega_i, double k_i, double omega_j, double k_j, double depth,
                           double g = kStandardGravity);
 
@@ -83,7 +84,8 @@ struct WaveAssessment {
   std::vector<std::string> warnings;
 };
 
-// The criteria (documented in the README, not a chart read by eye):
+// The criteria (documented in docs/user-guide/waves.md#wavemakers-motion-type-wave, not a chart
+// read by eye):
 // - breaking: H >= the Miche limit;
 // - cnoidal regime: Ursell number > 26 (the Stokes/cnoidal boundary of Le Mehaute's chart,
 //   Hedges 1995 discusses it): Stokes theories and Stokes paddles are outside their validity;

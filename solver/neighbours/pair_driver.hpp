@@ -1,8 +1,8 @@
-// The particle-pair driver, written once (STYLE.md): for every active particle a, gather its
-// neighbours b (neighbours/gather.hpp, with the selection policy) and hand them to a pair
-// evaluator (physics/wcsph_evaluator.hpp is the one the solver uses). Parallel over cells
-// with OpenMP; each thread writes only the particles of its own cells, so there are no
-// atomics and no scatter.
+// The particle-pair driver, written once (the SIMD pair loop of the forces and of shifting's first
+// pass): for every active particle a, gather its neighbours b (neighbours/gather.hpp, with the
+// selection policy) and hand them to a pair evaluator (physics/wcsph_evaluator.hpp is the one the
+// solver uses). Parallel over cells with OpenMP; each thread writes only the particles of its own
+// cells, so there are no atomics and no scatter.
 //
 // Evaluator interface (all inline, no virtual calls):
 //   using Real = ...;                            the pair terms' arithmetic type (double/float)

@@ -6,7 +6,7 @@
 // PairReal (types.hpp: float unless the double-state build), with r_ab taken from the double
 // positions; the rates are stored in double.
 //
-// Equations (DESIGN.md, defaults as DualSPHysics):
+// Equations (docs/method/equations.md; defaults as DualSPHysics):
 //   drho_a/dt = sum_b m_b v_ab . gradW_ab + density diffusion (fluid-fluid pairs)
 //   dv_a/dt   = -sum_b m_b (P_a/rho_a^2 + P_b/rho_b^2 + Pi_ab) gradW_ab + viscous + g
 // A wall particle's results: drho/dt from its neighbours (per the selection policy) and, in

@@ -70,7 +70,7 @@ inline const char* role_name(Role r) {
   return "unknown";
 }
 
-// Why a particle was taken out of the simulation (DESIGN.md: excluded and counted).
+// Why a particle was taken out of the simulation (never deleted: excluded and counted).
 enum class Exclusion : std::uint8_t { None = 0, OutOfDomain = 1, NonFinite = 2 };
 
 }  // namespace swell

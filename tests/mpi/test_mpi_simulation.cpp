@@ -20,12 +20,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "apps/rank_setup.hpp"
-#include "io/case_file.hpp"
-#include "io/case_setup.hpp"
+#include "case/reader.hpp"
+#include "case/setup.hpp"
 #include "parallel/comm.hpp"
 #include "parallel/decomposition.hpp"
 #include "parallel/halo.hpp"
+#include "run/rank_setup.hpp"
 #include "verify/pair_rounding.hpp"
 
 namespace swell::parallel {
@@ -344,7 +344,7 @@ TEST(MpiSimulation, DoublyPeriodicVortexMatchesOneRank) {
 }
 
 // The set-up distributed over the ranks (each fills its share of the lattice with a margin,
-// apps/rank_setup.hpp) against the whole case set up on this rank alone: every particle of the
+// run/rank_setup.hpp) against the whole case set up on this rank alone: every particle of the
 // whole set exactly once over the ranks, each bit for bit the whole set's record (id,
 // position, velocity, density and their integrator copies, mass, role, body, and the mDBC
 // normal and moving bodies' reference position where enabled), each rank's in the whole set's

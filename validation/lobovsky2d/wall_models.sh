@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The wall-model table of the README ("Wall loads: DBC against mDBC"): `swell validate
+# The wall-model table of docs/validation/lobovsky2d_wall_loads.md: `swell validate
 # lobovsky2d --run-sph` once per wall model and shifting choice, the case edited with --set
 # (nothing else changes: documented defaults), each into OUT/<variant>/, then one table of the
 # sensor and sensor-face metrics (wall_models_table.py).

@@ -48,12 +48,13 @@ def case_text(hd, d, dp, coefsound, name=None, coefh=1.0, viscosity="artificial"
               settle=0.0):
     # Wall layers (and paddle columns) for the full support 2h: ceil(2 coefh sqrt(2) - 1/2), 3 at
     # coefh 1 and 4 at 1.5 (until 2026-12-06 the paddle and beach had 2 at coefh 1, which `swell
-    # run` warns of: see the README, Solitary-wave runup); viscosity: artificial alpha 0.01 or
+    # run` warns of: see docs/validation/synolakis.md); viscosity: artificial alpha 0.01 or
     # water's laminar nu 1e-6. boundary mdbc: walls with mDBC's hydrostatic wall pressure (the
-    # linear rule shoots the thin water at the shoreline off the beach: README, Beaches and thin
-    # water), and the tank open at its far end, which the beach's plateau buries (mDBC refuses a
-    # wall particle inside another body). settle > 0: a settling phase of that many seconds
-    # before the paddle starts (the run ends that much later).
+    # linear rule shoots the thin water at the shoreline off the beach:
+    # docs/user-guide/boundaries.md#beaches-and-thin-water-pressure-hydrostatic), and the tank
+    # open at its far end, which the beach's plateau buries (mDBC refuses a wall particle inside
+    # another body). settle > 0: a settling phase of that many seconds before the paddle starts
+    # (the run ends that much later).
     layers = math.ceil(2.0 * coefh * math.sqrt(2.0) - 0.5)
     g = geometry(hd, d, dp, layers)
     coefh = f"{coefh:.1f}" if coefh == round(coefh, 1) else f"{coefh:g}"
