@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,12 +11,16 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <map>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
 
+#include "apps/validate_command.hpp"
 #include "bench/bench_run.hpp"
+#include "bench/bench_single.hpp"
 #include "case/reader.hpp"
 #include "io/resources.hpp"
 #include "run/run.hpp"
@@ -322,6 +327,56 @@ int run_bench(const BenchOptions& opt, std::ostream& log) {
     }
   }
   return 0;
+}
+
+Subcommand add_bench_command(CLI::App& app) {
+  struct Options {
+    BenchOptions bench;
+    BenchSingleOptions single;
+    std::string threads, sweep_dp;
+  };
+  auto o = std::make_shared<Options>();
+  BenchOptions& bench_opt = o->bench;
+  BenchSingleOptions& bench_single = o->single;
+  auto* bench = app.add_subcommand(
+      "bench", "performance benchmark: B2D, B3D (DualSPHysics' cases), 1 and 2 threads, scaling");
+  bench
+      ->add_option("cases", bench_opt.cases,
+                   "b2d, b3d, b3d_fine (default: these three); b2d_mdbc, b3d_mdbc (mDBC walls); "
+                   "b2d_shift, b3d_shift (particle shifting)")
+      ->check(CLI::IsMember(
+          {"b2d", "b3d", "b3d_fine", "b2d_mdbc", "b3d_mdbc", "b2d_shift", "b3d_shift"}));
+  bench->add_option("--threads", o->threads, "thread counts t1,t2 (default 1,2)");
+  bench->add_option("--repeats", bench_opt.repeats, "runs per point; medians are reported")
+      ->check(count_check());
+  bench->add_flag("--sweep", bench_opt.sweep, "B3D over dp (N ~1e4..1e6): cost per particle-step");
+  bench->add_option("--sweep-dp", o->sweep_dp, "sweep dp list d1,d2,... [m]");
+  bench->add_option("--sweep-steps", bench_opt.sweep_steps, "timed steps per sweep point")
+      ->check(count_check());
+  bench->add_option("-o,--out", bench_opt.out_dir, "output folder (default out/bench)");
+  bench->add_option("--bench-dir", bench_opt.bench_dir, "folder holding cases/b2d.yaml");
+  auto* single = bench->add_option("--single", bench_single.case_file,
+                                   "one measurement of this case file (used by the driver)");
+  bench->add_option("--dp", bench_single.dp, "with --single: dp [m]")->needs(single);
+  bench->add_option("--end", bench_single.end, "with --single: end time [s]")->needs(single);
+  bench->add_option("--steps", bench_single.steps, "with --single: timed steps")->needs(single);
+  bench->add_option("--warmup", bench_single.warmup, "with --single: untimed steps first")
+      ->needs(single);
+  bench->add_option("-t", bench_single.threads, "with --single: threads")->needs(single);
+  return Subcommand(bench, [o] {
+    if (!o->single.case_file.empty()) return run_bench_single(o->single, std::cout);
+    BenchOptions opt = o->bench;
+    if (!o->threads.empty()) {
+      opt.threads.clear();
+      for (const double t : parse_number_list(o->threads, "--threads")) {
+        if (!(t >= 1.0) || t != std::floor(t))
+          throw std::invalid_argument("--threads: expected positive integers, got " + o->threads);
+        opt.threads.push_back(static_cast<int>(t));
+      }
+    }
+    if (!o->sweep_dp.empty()) opt.sweep_dp = parse_number_list(o->sweep_dp, "--sweep-dp");
+    return run_bench(opt, std::cout);
+  });
 }
 
 }  // namespace swell

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/subcommand.hpp"
 #include "bench/bench_single.hpp"  // `swell bench --single`
 
 namespace swell {
@@ -26,5 +27,8 @@ struct BenchOptions {
 };
 
 int run_bench(const BenchOptions& opt, std::ostream& log);
+
+// Adds `swell bench` to `app`.
+Subcommand add_bench_command(CLI::App& app);
 
 }  // namespace swell

@@ -2,14 +2,18 @@
 
 #include <omp.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
 
 #include "case/geometry.hpp"
+#include "case/reader.hpp"
 #include "case/setup.hpp"
 #include "geometry/fill_volume.hpp"
 #include "io/provenance.hpp"
@@ -172,6 +176,26 @@ FillSummary run_fill(const CaseSpec& spec, const FillCommandOptions& opt, std::o
   if (spec.dim == 2) return fill_dim<2>(spec, opt, log);
   if (spec.dim == 3) return fill_dim<3>(spec, opt, log);
   throw std::invalid_argument(spec.file + ": dim must be 2 or 3");
+}
+
+Subcommand add_fill_command(CLI::App& app) {
+  struct Options {
+    std::string case_path;
+    std::vector<std::string> sets;
+    FillCommandOptions fill;
+  };
+  auto o = std::make_shared<Options>();
+  auto* fill = app.add_subcommand(
+      "fill", "build a case's particles as `run` would, write <name>_fill.vtp and report");
+  fill->add_option("case", o->case_path, "case file (YAML)")->required();
+  add_set_option(fill, o->sets);
+  fill->add_option("-o,--out", o->fill.out_dir, "output folder (default: out/<case name>)");
+  fill->add_option("-t,--threads", o->fill.threads, "OpenMP threads (default: all cores)")
+      ->check(count_check());
+  return Subcommand(fill, [o] {
+    run_fill(load_case_file(o->case_path, o->sets), o->fill, std::cout);
+    return 0;
+  });
 }
 
 }  // namespace swell

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/subcommand.hpp"
 #include "case/spec.hpp"
 #include "geometry/lattice_fill.hpp"
 #include "geometry/mesh_solid.hpp"
@@ -52,5 +53,8 @@ FillSummary run_fill(const CaseSpec& spec, const FillCommandOptions& opt, std::o
 void print_fill_report(std::ostream& out, const std::vector<geometry::BodyFillReport>& bodies,
                        const std::vector<geometry::MeshReport>& meshes, int dim, double dp,
                        double fill_seconds, const std::vector<FluidVolumeCheck>* volumes = nullptr);
+
+// Adds `swell fill` to `app`.
+Subcommand add_fill_command(CLI::App& app);
 
 }  // namespace swell

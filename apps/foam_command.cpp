@@ -1,9 +1,14 @@
 #include "apps/foam_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
+#include <memory>
 #include <ostream>
+#include <vector>
 
+#include "case/reader.hpp"
 #include "io/run_info.hpp"
 
 namespace swell {
@@ -42,6 +47,34 @@ FoamResult run_foam_command(const CaseSpec& spec, const FoamOptions& opt_in, std
         << r.case_dir << "/Allrun\n";
   }
   return r;
+}
+
+Subcommand add_foam_command(CLI::App& app) {
+  struct Options {
+    std::string case_path;
+    std::vector<std::string> sets;
+    FoamOptions foam;
+  };
+  auto o = std::make_shared<Options>();
+  FoamOptions& foam_opt = o->foam;
+  auto* foam = app.add_subcommand(
+      "foam", "write an OpenFOAM interFoam case of a case file; --run runs it and converts gauges");
+  foam->add_option("case", o->case_path, "case file (YAML)")->required();
+  add_set_option(foam, o->sets);
+  foam->add_option("-o,--out", foam_opt.out_dir, "case folder (default: out/<case name>_foam)");
+  auto* foam_cell =
+      foam->add_option("--cell", foam_opt.cell_size, "cell size [m]")->check(positive_check());
+  foam->add_option("--cells-per-dp", foam_opt.cells_per_dp, "cell = dp / K (default 1)")
+      ->check(positive_check())
+      ->excludes(foam_cell);
+  foam->add_option("--end", foam_opt.end_time, "end time [s] (default: the case's)")
+      ->check(positive_check());
+  foam->add_flag("--run", foam_opt.run, "run it (blockMesh ... interFoam) and convert the gauges");
+  foam->add_option("--np", foam_opt.np, "processes (decomposePar + mpirun)")->check(count_check());
+  return Subcommand(foam, [o] {
+    run_foam_command(load_case_file(o->case_path, o->sets), o->foam, std::cout);
+    return 0;
+  });
 }
 
 }  // namespace swell

@@ -5,6 +5,7 @@
 
 #include <iosfwd>
 
+#include "apps/subcommand.hpp"
 #include "case/spec.hpp"
 #include "foam/foam.hpp"
 
@@ -16,5 +17,8 @@ constexpr int kExitFoamMissing = 4;
 // Writes (and with opt.run runs) the case; throws FoamError / std::invalid_argument as
 // write_foam_case and run_foam_case do.
 FoamResult run_foam_command(const CaseSpec& spec, const FoamOptions& opt, std::ostream& out);
+
+// Adds `swell foam` to `app`.
+Subcommand add_foam_command(CLI::App& app);
 
 }  // namespace swell

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -134,7 +135,10 @@ Subcommand add_waves_goda_command(CLI::App& waves) {
   a->add_option("--rho", in.rho, "water density [kg/m^3] (default 1000)");
   a->add_option("-g", in.g, "gravity [m/s^2] (default 9.81)");
   a->add_option("--csv", opt->csv, "write the distribution z, p(z) and the results as CSV");
-  return Subcommand(a, [opt](std::ostream& out) { run_waves_goda(*opt, out); });
+  return Subcommand(a, [opt] {
+    run_waves_goda(*opt, std::cout);
+    return 0;
+  });
 }
 
 }  // namespace swell

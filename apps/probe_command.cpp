@@ -1,7 +1,10 @@
 #include "apps/probe_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -156,6 +159,51 @@ int run_probe(const ProbeOptions& opt, std::ostream& out) {
   if (meta.dim == 2) return probe_dim<2>(opt, path, meta, out);
   if (meta.dim == 3) return probe_dim<3>(opt, path, meta, out);
   throw std::runtime_error(path + ": metadata dim must be 2 or 3");
+}
+
+Subcommand add_probe_command(CLI::App& app) {
+  struct Options {
+    std::string dir, at, normal, kind = "pressure", out, to;
+    double offset = -1.0;
+    std::optional<double> swl, size;
+  };
+  auto o = std::make_shared<Options>();
+  auto* probe = app.add_subcommand("probe", "evaluate a gauge on the snapshots of a finished run");
+  probe->add_option("outdir", o->dir, "output folder of a run (holding <case>.h5)")->required();
+  probe
+      ->add_option("--at", o->at,
+                   "point x,y[,z] (height: horizontal position and line start; runup: the "
+                   "line's lower end on the slope)")
+      ->required();
+  probe->add_option("--kind", o->kind, "pressure | velocity | height | runup")
+      ->check(CLI::IsMember({"pressure", "velocity", "height", "runup"}));
+  probe->add_option("--to", o->to, "runup: the line's upper end on the slope x,y[,z]");
+  probe->add_option("--swl", o->swl, "runup: still-water level (the value is relative to it)");
+  probe->add_option("--normal", o->normal,
+                    "pressure: wall normal nx,ny[,nz]; sample at at + offset*normal");
+  probe->add_option("--offset", o->offset, "distance along the normal (default h)");
+  probe->add_option("--size", o->size,
+                    "pressure: a sensor face of this diameter (3D) / length (2D) [m] on the wall "
+                    "at --at, needs --normal (the face average, as a case gauge's size)");
+  probe->add_option("-o,--out", o->out, "CSV file (default: standard output)");
+  return Subcommand(probe, [o] {
+    ProbeOptions opt;
+    opt.out_dir = o->dir;
+    opt.kind = o->kind;
+    opt.at = parse_vector_option(o->at, "--at");
+    if (!o->normal.empty()) opt.normal = parse_vector_option(o->normal, "--normal");
+    if (o->offset >= 0.0) {
+      if (!opt.normal) throw std::invalid_argument("--offset needs --normal");
+      opt.offset = o->offset;
+    }
+    if (!o->to.empty()) opt.to = parse_vector_option(o->to, "--to");
+    opt.swl = o->swl;
+    opt.size = o->size;
+    opt.output = o->out;
+    const int rows = run_probe(opt, std::cout);
+    if (!o->out.empty()) std::cerr << "probe: " << rows << " snapshots -> " << o->out << "\n";
+    return 0;
+  });
 }
 
 }  // namespace swell

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "apps/subcommand.hpp"
+
 namespace swell {
 
 struct ProbeOptions {
@@ -26,5 +28,8 @@ int run_probe(const ProbeOptions& opt, std::ostream& out);
 
 // Parses "x,y" or "x,y,z" (a command-line vector). Throws std::invalid_argument.
 Eigen::Vector3d parse_vector_option(const std::string& text, const std::string& option);
+
+// Adds `swell probe` to `app`.
+Subcommand add_probe_command(CLI::App& app);
 
 }  // namespace swell

@@ -1,5 +1,6 @@
 #include "apps/validate_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,11 +9,13 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
+#include "apps/probe_command.hpp"
 #include "case/reader.hpp"
 #include "foam/foam.hpp"
 #include "io/resources.hpp"
@@ -671,6 +674,87 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log) {
       << sum.targets_known_fail << " known), " << sum.targets_missing << " without result -> "
       << sum.report << "\n";
   return sum;
+}
+
+Subcommand add_compare_command(CLI::App& app) {
+  struct Options {
+    CompareOptions cmp;
+    std::string labels, window, peak_window;
+    double arrival = 0.0;
+    CLI::Option* arrival_opt = nullptr;
+  };
+  auto o = std::make_shared<Options>();
+  CompareOptions& cmp = o->cmp;
+  auto* compare = app.add_subcommand(
+      "compare", "metrics, plots and a report of runs' gauges against a reference CSV or run");
+  compare->add_option("runs", cmp.runs, "run folders holding gauges_*.csv")->required();
+  compare->add_option("--reference", cmp.reference, "reference CSV table, or a run folder")
+      ->required();
+  compare->add_option("--labels", o->labels, "comma-separated labels, one per run");
+  compare->add_option("--reference-label", cmp.reference_label,
+                      "legend text of the reference (e.g. \"experiment (Lobovsky 2014)\")");
+  compare->add_option("-o,--out", cmp.out_dir, "output folder")->required();
+  compare->add_option("--map", cmp.map, "GAUGE=COLUMN: reference column of a gauge (repeatable)");
+  compare->add_option("--time-scale", cmp.time_scale, "normalise run times: t * scale")
+      ->check(positive_check());
+  compare->add_option("--value-scale", cmp.value_scale, "normalise run values: v * scale")
+      ->check(positive_check());
+  compare->add_option("--window", o->window, "metric window t0,t1 (scaled time)");
+  compare->add_option("--peak-window", o->peak_window, "peak window t0,t1 (default: --window)");
+  o->arrival_opt = compare->add_option("--arrival", o->arrival, "arrival threshold (scaled value)");
+  return Subcommand(compare, [o] {
+    auto window = [](const std::string& text, const std::string& option) {
+      const auto v = parse_vector_option(text, option);
+      if (!(v[1] > v[0]) || v[2] != 0.0)
+        throw std::invalid_argument(option + ": expected t0,t1 with t1 > t0");
+      return Window{v[0], v[1]};
+    };
+    CompareOptions cmp = o->cmp;
+    if (!o->labels.empty()) {
+      std::stringstream in(o->labels);
+      for (std::string l; std::getline(in, l, ',');) cmp.labels.push_back(l);
+    }
+    if (!o->window.empty()) cmp.window = window(o->window, "--window");
+    if (!o->peak_window.empty()) cmp.peak_window = window(o->peak_window, "--peak-window");
+    if (*o->arrival_opt) cmp.arrival_threshold = o->arrival;
+    run_compare(cmp, std::cerr);
+    return 0;
+  });
+}
+
+Subcommand add_validate_command(CLI::App& app) {
+  struct Options {
+    ValidateOptions val;
+    std::string resolutions, cells;
+  };
+  auto o = std::make_shared<Options>();
+  ValidateOptions& val = o->val;
+  auto* validate = app.add_subcommand(
+      "validate", "run/compare a validation case (validation/NAME/validation.yaml) and report");
+  validate->add_option("name", val.name, "validation case name, folder or manifest file")
+      ->required();
+  add_set_option(validate, val.sets);
+  validate->add_flag("--run-sph", val.run_sph, "run the SPH case (else: committed results)");
+  validate->add_flag("--run-foam", val.run_foam, "run interFoam (else: committed results)");
+  validate->add_option("--resolution", o->resolutions,
+                       "SPH dp list d1,d2 [m] (default: manifest's)");
+  validate->add_option("--cell-size", o->cells, "OpenFOAM cell sizes c1,c2 [m]");
+  validate->add_option("-o,--out", val.out_dir, "output folder (default: out/validate/NAME)");
+  validate->add_option("-t,--threads", val.threads, "OpenMP threads for SPH runs")
+      ->check(count_check());
+  validate->add_option("--np", val.np, "OpenFOAM processes")->check(count_check());
+  validate->add_option("--end", val.end_time, "end time of fresh runs [s] (shortened runs)")
+      ->check(positive_check());
+  validate->add_flag("--save-results", val.save_results,
+                     "copy fresh results into validation/NAME/results/ (to commit them)");
+  return Subcommand(validate, [o] {
+    ValidateOptions val = o->val;
+    if (!o->resolutions.empty())
+      val.resolutions = parse_number_list(o->resolutions, "--resolution");
+    if (!o->cells.empty()) val.cell_sizes = parse_number_list(o->cells, "--cell-size");
+    run_validate(val, std::cerr);
+    return 0;
+  });
 }
 
 }  // namespace swell

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/subcommand.hpp"
 #include "validation/metrics.hpp"
 
 namespace swell {
@@ -76,5 +77,9 @@ ValidateSummary run_validate(const ValidateOptions& opt, std::ostream& log);
 // "0.004,0.002" -> {0.004, 0.002}; throws std::invalid_argument naming `option`.
 std::vector<double> parse_number_list(const std::string& text, const std::string& option,
                                       bool zero_allowed = false);
+
+// Add `swell compare` and `swell validate` to `app`.
+Subcommand add_compare_command(CLI::App& app);
+Subcommand add_validate_command(CLI::App& app);
 
 }  // namespace swell

@@ -2,12 +2,15 @@
 
 #include <omp.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -174,6 +177,18 @@ int run_verify(const VerifyOptions& opt, std::ostream& log) {
   log << "verify: " << (chosen.size() - static_cast<std::size_t>(failed)) << "/" << chosen.size()
       << " passed; report " << (out / "report.md").string() << "\n";
   return failed == 0 ? 0 : 1;
+}
+
+Subcommand add_verify_command(CLI::App& app) {
+  auto ver = std::make_shared<VerifyOptions>();
+  auto* verify = app.add_subcommand(
+      "verify", "the method checked piece by piece: consistency, convergence, conservation");
+  verify->add_option("names", ver->names, "verifications to run (default: all; --list)");
+  verify->add_option("-o,--out", ver->out_dir, "output folder (default: out/verify)");
+  verify->add_flag("--full", ver->full, "the full convergence studies (longer)");
+  verify->add_flag("--list", ver->list, "list the verifications and stop");
+  verify->add_option("-t,--threads", ver->threads, "OpenMP threads")->check(count_check());
+  return Subcommand(verify, [ver] { return run_verify(*ver, std::cout); });
 }
 
 }  // namespace swell

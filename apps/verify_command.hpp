@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "apps/subcommand.hpp"
+
 namespace swell {
 
 struct VerifyOptions {
@@ -23,5 +25,8 @@ struct VerifyOptions {
 };
 
 int run_verify(const VerifyOptions& opt, std::ostream& log);
+
+// Adds `swell verify` to `app`.
+Subcommand add_verify_command(CLI::App& app);
 
 }  // namespace swell

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -360,7 +361,10 @@ Subcommand add_waves_analyse_command(CLI::App& waves) {
   a->add_option("--fmax", opt->fmax, "band end [Hz]");
   a->add_option("--gravity", opt->gravity, "g [m/s^2] (default 9.81)");
   a->add_option("--csv", opt->csv, "write the spectra to this CSV file");
-  return Subcommand(a, [opt](std::ostream& out) { run_waves_analyse(*opt, out); });
+  return Subcommand(a, [opt] {
+    run_waves_analyse(*opt, std::cout);
+    return 0;
+  });
 }
 
 }  // namespace swell

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -192,7 +193,10 @@ Subcommand add_waves_predict_command(CLI::App& waves) {
   a->add_option("--fmax", opt->fmax, "drop components above this frequency [Hz]");
   a->add_option("--gravity", opt->gravity, "g [m/s^2] (default 9.81)");
   a->add_option("--csv", opt->csv, "write the prediction (and probes) to this CSV file");
-  return Subcommand(a, [opt](std::ostream& out) { run_waves_predict(*opt, out); });
+  return Subcommand(a, [opt] {
+    run_waves_predict(*opt, std::cout);
+    return 0;
+  });
 }
 
 }  // namespace swell

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <iostream>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -83,7 +84,10 @@ Subcommand add_waves_target_command(CLI::App& waves) {
   a->add_option("--body", opt->body, "the wavemaker body (default: the first with a wave)");
   a->add_option("--set", opt->sets, "case edit key=value, as `swell run --set`");
   a->add_option("--csv", opt->csv, "write the CSV here (default: print it)");
-  return Subcommand(a, [opt](std::ostream& out) { run_waves_target(*opt, out); });
+  return Subcommand(a, [opt] {
+    run_waves_target(*opt, std::cout);
+    return 0;
+  });
 }
 
 }  // namespace swell

@@ -1,9 +1,17 @@
 #include "apps/waves_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
+#include <iostream>
+#include <memory>
 #include <ostream>
 #include <stdexcept>
+#include <vector>
 
+#include "apps/goda_command.hpp"
+#include "apps/wave_analysis_command.hpp"
+#include "apps/wave_predict_command.hpp"
+#include "apps/wave_target_command.hpp"
 #include "waves/theory.hpp"
 
 namespace swell {
@@ -63,6 +71,38 @@ int run_waves(const WavesOptions& opt, std::ostream& out) {
   for (const auto& w : a.warnings) out << "warning: " << w << "\n";
   if (a.warnings.empty()) out << "no warnings: order " << opt.order << " generation is valid\n";
   return static_cast<int>(a.warnings.size());
+}
+
+Subcommand add_waves_command(CLI::App& app) {
+  auto o = std::make_shared<WavesOptions>();
+  auto* waves = app.add_subcommand(
+      "waves",
+      "wave theory (swell waves H T d [--paddle flap --hinge l]), analysis (analyse), Goda's wall "
+      "pressures (goda), a case's target wave (target)");
+  waves->require_subcommand(0, 1);
+  // `swell waves analyse | predict | goda | target`: each file registers its own.
+  auto subcommands = std::make_shared<const std::vector<Subcommand>>(
+      std::vector<Subcommand>{add_waves_analyse_command(*waves), add_waves_predict_command(*waves),
+                              add_waves_goda_command(*waves), add_waves_target_command(*waves)});
+  auto* height = waves->add_option("H", o->height, "wave height [m]")->check(positive_check());
+  waves->add_option("T", o->period, "wave period [s]")->check(positive_check());
+  waves->add_option("d", o->depth, "still-water depth [m]")->check(positive_check());
+  waves->add_option("--paddle", o->paddle, "piston (default) | flap")
+      ->check(CLI::IsMember({"piston", "flap"}));
+  waves->add_option("--hinge", o->hinge, "flap: hinge height above the bed [m] (< 0: below)");
+  waves->add_option("--order", o->order, "generation order 1 | 2 (default 1)")
+      ->check(CLI::IsMember({1, 2}));
+  waves->add_option("--dp", o->dp, "particle spacing [m]: resolution checks")
+      ->check(positive_check());
+  waves->add_option("-g", o->g, "gravity [m/s^2] (default 9.81)")->check(positive_check());
+  return Subcommand(waves, [o, subcommands, height] {
+    for (const Subcommand& c : *subcommands)
+      if (c.chosen()) return c.run();
+    if (height->count() == 0 || o->period <= 0.0 || o->depth <= 0.0)
+      throw std::invalid_argument("waves: expected H T d (height [m], period [s], depth [m])");
+    run_waves(*o, std::cout);
+    return 0;
+  });
 }
 
 }  // namespace swell

@@ -6,6 +6,8 @@
 #include <iosfwd>
 #include <string>
 
+#include "apps/subcommand.hpp"
+
 namespace swell {
 
 struct WavesOptions {
@@ -20,5 +22,9 @@ struct WavesOptions {
 // Prints the assessment; returns the number of warnings. Throws std::invalid_argument on bad
 // numbers.
 int run_waves(const WavesOptions& opt, std::ostream& out);
+
+// Adds `swell waves` to `app`: the theory of `swell waves H T d` and its subcommands analyse,
+// predict, goda and target (each registered by its own file); running it runs the chosen one.
+Subcommand add_waves_command(CLI::App& app);
 
 }  // namespace swell
