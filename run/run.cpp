@@ -161,11 +161,11 @@ void Run<D>::open() {
   proto_.root_work();
   try {
     setup_.emplace(rank_setup<D>(spec_, comm_));
+    region_.emplace(gauge_region<D>(spec_.gauges, gauge_context(*setup_)));
   } catch (const std::exception&) {
     if (!root_) proto_.post(2);  // meet rank 0 at its next agreement, then leave with this error
     throw;
   }
-  region_.emplace(gauge_region<D>(spec_.gauges, gauge_context(*setup_)));
   if (!root_) return;
   for (const auto& b : setup_->bodies) (b.fluid ? sum_.fluid : sum_.boundary) += b.particles;
   n_total_ = sum_.fluid + sum_.boundary;

@@ -160,6 +160,7 @@ same_files("re3", "re3w")
 pieces("r2")
 compare("r1", "r2", exact=False)
 compare("r2", "re2", exact=True)
+compare("sigref", "sig", exact=True)  # stopped by SIGINT to rank 1, then continued
 compare("r2", "re1", exact=False)
 compare("r2", "re3", exact=False)
 compare("m1", "m2", exact=False)  # mDBC

@@ -8,6 +8,8 @@
 #   - a second run into a folder that holds one is refused by rank 0 with exit 2, the others
 #     leave with it (no rank waits forever), and the folder keeps its files unchanged;
 #   - the watchdog (rank 0's check) stops a run on 2 ranks with exit 3;
+#   - SIGINT to one rank stops every rank with exit 130 and a checkpoint, whose restart ends
+#     bit for bit as the uninterrupted run; a restart by another case is refused with exit 2;
 #   - a command other than run on 2 ranks is refused with exit 2;
 #   - output from every rank (parallel HDF5 snapshots and checkpoints, VTK pieces + .pvtp;
 #     gauges from the particles within their reach) against rank 0 writing everything from a
@@ -70,6 +72,36 @@ grep -q "already holds a run" refused.log || { echo "FAIL: no message from rank 
 rc=0; run 2 -o wd --set time.end=0.06 --set watchdog.max_density=1.0001 > wd.log 2>&1 || rc=$?
 if [ "$rc" != 3 ]; then echo "FAIL: a watchdog stop on 2 ranks exited $rc, not 3"; cat wd.log; exit 1; fi
 grep -q "went unstable" wd.log || { echo "FAIL: no watchdog message"; cat wd.log; exit 1; }
+# SIGINT to rank 1 alone of a 2-rank run, at its first progress line (2 s into the loop, mid
+# run): every rank stops at the same step (the ranks share the request through a reduction
+# before each step), rank 0 writes the checkpoint and says how to continue, and the run exits
+# 130; continued on 2 ranks it ends bit for bit as the uninterrupted run (check_ranks.py:
+# sigref against sig). 0.3 s of simulated time: long enough to be stopped before its end.
+run 2 -o sigref --set time.end=0.3 > sigref.log
+run 2 -o sig --set time.end=0.3 > sig.log 2>&1 &
+job=$!
+i=0
+until grep -q "^t = " sig/run.log 2> /dev/null; do
+  i=$((i + 1)); [ "$i" -lt 600 ] || { echo "FAIL: the run to interrupt never stepped"; cat sig.log; exit 1; }
+  sleep 0.1
+done
+for p in $(pgrep -f -- "-o sig --set time.end=0.3"); do
+  if tr '\0' '\n' < "/proc/$p/environ" 2> /dev/null | grep -qx OMPI_COMM_WORLD_RANK=1; then kill -INT "$p"; fi
+done
+rc=0; wait "$job" || rc=$?
+[ "$rc" = 130 ] || { echo "FAIL: SIGINT to rank 1 of 2 exited $rc, not 130"; cat sig.log; exit 1; }
+grep -q "stopped by SIGINT" sig.log || { echo "FAIL: rank 0 did not say it stopped"; cat sig.log; exit 1; }
+grep -q "continue with: swell run" sig.log || { echo "FAIL: no restart hint"; cat sig.log; exit 1; }
+grep -q "continue with" sig.log && ! grep -q "^  simulated time" sig.log ||
+  { echo "FAIL: the run ended before the signal"; cat sig.log; exit 1; }
+run 2 --restart sig --set time.end=0.3 > sig_re.log
+# A restart with another case (an edit that changes the case's identity) is refused by every
+# rank with exit 2, rank 0 saying why; the folder keeps its checkpoint.
+sum0=$(md5sum < sig/checkpoint.h5)
+rc=0; run 2 --restart sig --set time.end=0.3 --set physics.coefsound=21 > mismatch.log 2>&1 || rc=$?
+[ "$rc" = 2 ] || { echo "FAIL: a restart by another case on 2 ranks exited $rc, not 2"; cat mismatch.log; exit 1; }
+grep -q "differs from it" mismatch.log || { echo "FAIL: no case-identity message"; cat mismatch.log; exit 1; }
+[ "$(md5sum < sig/checkpoint.h5)" = "$sum0" ] || { echo "FAIL: the refused restart changed sig"; exit 1; }
 # A rank whose rows of a shared file fail (test hook, as a full disk would; parallel HDF5
 # builds): every rank leaves with exit 1 (none waits forever), the folder keeps its checkpoint
 # and earlier snapshots, and no temporary file is left.
