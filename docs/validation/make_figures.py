@@ -232,9 +232,22 @@ def caisson():
 
 
 def main():
+    global OUT
+    import argparse
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", default=OUT,
+                    help="folder for the PNGs (default: docs/validation/_figures, committed)")
+    OUT = ap.parse_args().out
     os.makedirs(OUT, exist_ok=True)
     for fn in (martin_moyce, lobovsky, foam_dambreak, spheric, wave_flume, caisson):
         fn()
+    # Every figure the pages show is made here (none missing from the committed set).
+    made = sorted(f for f in os.listdir(OUT) if f.endswith(".png"))
+    committed = sorted(f for f in os.listdir(os.path.join(HERE, "_figures")) if f.endswith(".png"))
+    missing = [f for f in committed if f not in made]
+    if missing:
+        sys.exit("make_figures: not made from the committed results: " + ", ".join(missing))
 
 
 if __name__ == "__main__":
