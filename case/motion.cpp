@@ -74,6 +74,15 @@ class MotionReader : private NodeReader {
 
   MotionSpec read(const YAML::Node& node, const std::string& path) const;
 
+  // The wave kinds' readers (the table wave_kinds()): each reads its own keys (the schema's
+  // form "wave:<kind>"), makes the paddle's signal, adds to the run header's label and returns
+  // the period the default ramp (two of them) is taken from, 0 for none.
+  struct WaveRead;
+  double read_regular(WaveRead& w) const;
+  double read_solitary(WaveRead& w) const;
+  double read_irregular(WaveRead& w) const;
+  double read_focused(WaveRead& w) const;
+
  private:
   const MotionTypeInfo& read_type(const YAML::Node& node, const std::string& path) const;
   void check_motion_keys(const YAML::Node& node, const std::string& path,
@@ -87,14 +96,51 @@ class MotionReader : private NodeReader {
   void read_absorption(const YAML::Node& node, const std::string& path, const std::string& kind,
                        MotionSpec& spec) const;
   void read_wave(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
+  waves::SpectrumSpec read_spectrum(WaveRead& w) const;
+  void component_paddle(WaveRead& w, const std::vector<waves::SurfaceComponent>& surface) const;
+  void second_order_note(WaveRead& w, int n) const;
   void read_pivot(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
   void read_direction(const YAML::Node& node, const std::string& path, MotionSpec& spec) const;
   Eigen::Vector3d unit(const YAML::Node& node, const std::string& path, int count) const;
+  double positive_number(const YAML::Node& node, const std::string& path, const char* key) const {
+    return number_if(
+        require(node, path, key), child(path, key), [](double v) { return v > 0.0; },
+        "a number > 0");
+  }
 
   std::string case_dir_;
   double g_ = 9.81;
   double dp_ = 0.0;
 };
+
+// What a wave kind's reader reads from and writes to: the wave's node, the paddle, the order,
+// the run header's label, the motion spec; the paddle signal it makes.
+struct MotionReader::WaveRead {
+  const YAML::Node& node;
+  const std::string& path;
+  const std::string& kind;
+  const waves::PaddleGeometry& paddle;
+  bool flap = false;
+  int order = 1;
+  std::ostringstream& label;
+  MotionSpec& spec;
+  waves::PaddleSignal signal;
+};
+
+// The wave kinds (`wave:` of a `type: wave` motion), each with its reader. A kind's keys are
+// the schema's form "wave:<kind>" (case/schema.cpp); a kind in the schema without a reader here
+// is a programming error (WaveKinds.TheReaderReadsEveryKindOfTheSchema).
+struct WaveKind {
+  std::string_view name;
+  double (MotionReader::*read)(MotionReader::WaveRead&) const;
+};
+const std::vector<WaveKind>& wave_kinds() {
+  static const std::vector<WaveKind> kinds{{"regular", &MotionReader::read_regular},
+                                           {"solitary", &MotionReader::read_solitary},
+                                           {"irregular", &MotionReader::read_irregular},
+                                           {"focused", &MotionReader::read_focused}};
+  return kinds;
+}
 
 MotionSpec MotionReader::read(const YAML::Node& node, const std::string& path) const {
   if (node.IsScalar() && node.Scalar() == "none") return MotionSpec{};
@@ -307,10 +353,7 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
                           "' (it belongs to wave: " + join(owners) + "); a " + kind +
                           " wave takes " + join(allowed));
   }
-  const auto positive = [](double v) { return v > 0.0; };
-  const auto number_pos = [&](const char* key) {
-    return number_if(require(node, path, key), child(path, key), positive, "a number > 0");
-  };
+  const auto number_pos = [&](const char* key) { return positive_number(node, path, key); };
 
   PaddleGeometry paddle;
   if (auto v = find(node, "paddle")) {
@@ -369,105 +412,131 @@ void MotionReader::read_wave(const YAML::Node& node, const std::string& path,
                    "1 with a flap");
   }
   spec.wave_order = order;
-  // Order 2 of a component set: n (n - 1) / 2 pair terms summed every step (again for the target
-  // elevation where absorption is on). Measured: 200 components cost 1-4 % of the step at 15k
-  // particles (docs/validation/wave_bound_long.md); the cost grows as n^2, so from 500 on it is
-  // noted.
-  const auto second_order_note = [&](int n) {
-    if (order != 2) return;
-    const long pairs = static_cast<long>(n) * (n - 1) / 2;
-    label << ", order 2 (bound long wave, " << pairs << " pairs)";
-    if (n >= 500)
-      spec.wave_notes.push_back(
-          "order 2 with " + std::to_string(n) + " components: " + std::to_string(pairs) +
-          " pair terms every step (" + (spec.absorption ? "twice, with absorption; " : "") +
-          "200 components cost 1-4 % of the step at 15k particles, and the cost grows as the "
-          "square of the number of components); fewer components cost less");
-  };
-  // A component set (irregular sea, focused group) to first or second order.
-  const auto component_paddle = [&](const std::vector<waves::SurfaceComponent>& surface) {
-    return order == 2 ? waves::second_order_paddle(paddle, surface, g_)
-                      : waves::linear_paddle(paddle, surface, g_);
-  };
+  WaveRead w{node, path, kind, paddle, flap, order, label, spec};
+  const auto reader = std::find_if(wave_kinds().begin(), wave_kinds().end(),
+                                   [&](const WaveKind& k) { return k.name == kind; });
+  if (reader == wave_kinds().end())  // choice() above took the kind from the same schema forms
+    throw std::logic_error("wave kind '" + kind + "' has no reader");
   try {
-    waves::PaddleSignal signal;
-    if (kind == "regular") {
-      const double h = number_pos("height"), t = number_pos("period");
-      double phase = 0.0;
-      if (auto v = find(node, "phase")) phase = kDegree * number(*v, child(path, "phase"));
-      signal = waves::regular_paddle(paddle, h, t, order, phase, g_);
-      spec.wave_height = h;
-      spec.wave_period = t;
-      spec.wave_phase = phase;
-      const waves::WaveAssessment a =
-          waves::assess_regular_wave(h, t, paddle.depth, paddle, order, dp_, g_);
-      label << ", H " << h << " m, T " << t << " s, order " << order << " (L " << a.length
-            << " m, kd " << a.kd << ", " << a.theory << "; stroke " << a.stroke << " m)";
-      spec.wave_notes = a.warnings;
-      period_for_ramp = t;
-    } else if (kind == "solitary") {
-      if (flap) fail(node, path + ": a solitary wave (Goring 1978) needs paddle: piston");
-      if (auto v = find(node, "ramp"))
-        fail(*v, child(path, "ramp") + ": a solitary wave starts from rest and takes no ramp");
-      const double h = number_pos("height");
-      signal = waves::solitary_paddle(paddle, h, g_);
-      spec.wave_height = h;
-      label << ", H " << h << " m (stroke " << signal.soliton.stroke << " m over "
-            << signal.soliton.duration << " s)";
-    } else {
-      waves::SpectrumSpec sp;
-      sp.tp = number_pos("tp");
-      if (auto v = find(node, "spectrum"))
-        sp.shape =
-            choice(*v, child(path, "spectrum"), case_schema::choices(kSection, "spectrum")) == "pm"
-                ? waves::SpectrumSpec::Shape::PiersonMoskowitz
-                : waves::SpectrumSpec::Shape::Jonswap;
-      if (auto v = find(node, "gamma"))
-        sp.gamma = number_if(
-            *v, child(path, "gamma"), [](double g) { return g >= 1.0 && g <= 20.0; },
-            "a number in [1, 20]");
-      sp.components = kind == "focused" ? 60 : 200;
-      if (auto v = find(node, "components")) {
-        sp.components = integer(*v, child(path, "components"));
-        expect(sp.components >= 1 && sp.components <= 5000, *v, child(path, "components"),
-               "an integer in [1, 5000]");
-      }
-      if (auto v = find(node, "f_min")) sp.f_min = number_pos("f_min");
-      if (auto v = find(node, "f_max")) sp.f_max = number_pos("f_max");
-      const double f_lo = sp.f_min > 0 ? sp.f_min : 0.5 / sp.tp;
-      const double f_hi = sp.f_max > 0 ? sp.f_max : 3.0 / sp.tp;
-      if (!(f_hi > f_lo))
-        fail(node, path + ": f_max (" + std::to_string(f_hi) + " Hz) must exceed f_min (" +
-                       std::to_string(f_lo) + " Hz)");
-      period_for_ramp = sp.tp;
-      if (kind == "irregular") {
-        sp.hs = number_pos("hs");
-        if (auto v = find(node, "seed")) {
-          const long seed = integer(*v, child(path, "seed"));
-          expect(seed >= 0, *v, child(path, "seed"), "an integer >= 0");
-          sp.seed = static_cast<std::uint64_t>(seed);
-        }
-        signal = component_paddle(waves::irregular_sea(sp));
-        label << ", Hs " << sp.hs << " m, Tp " << sp.tp << " s, " << sp.components
-              << " components, seed " << sp.seed;
-        second_order_note(sp.components);
-      } else {
-        const double a = number_pos("amplitude");
-        const double xf = number_pos("focus_distance");
-        const double tf = number_pos("focus_time");
-        signal = component_paddle(waves::focused_group(sp, a, xf, tf, paddle.depth, g_));
-        label << ", crest " << a << " m at " << xf << " m from the paddle, t " << tf << " s, Tp "
-              << sp.tp << " s";
-        second_order_note(sp.components);
-      }
-    }
-    spec.paddle = std::make_shared<const waves::PaddleSignal>(std::move(signal));
+    period_for_ramp = (this->*reader->read)(w);
+    spec.paddle = std::make_shared<const waves::PaddleSignal>(std::move(w.signal));
   } catch (const std::invalid_argument& e) {
     fail(node, path + ": " + e.what());
   }
   if (!find(node, "ramp") && period_for_ramp > 0.0) spec.ramp = 2.0 * period_for_ramp;
   label << ", ramp " << spec.ramp << " s";
   spec.wave_label = label.str();
+}
+
+double MotionReader::read_regular(WaveRead& w) const {
+  MotionSpec& spec = w.spec;
+  const double h = positive_number(w.node, w.path, "height");
+  const double t = positive_number(w.node, w.path, "period");
+  double phase = 0.0;
+  if (auto v = find(w.node, "phase")) phase = kDegree * number(*v, child(w.path, "phase"));
+  w.signal = waves::regular_paddle(w.paddle, h, t, w.order, phase, g_);
+  spec.wave_height = h;
+  spec.wave_period = t;
+  spec.wave_phase = phase;
+  const waves::WaveAssessment a =
+      waves::assess_regular_wave(h, t, w.paddle.depth, w.paddle, w.order, dp_, g_);
+  w.label << ", H " << h << " m, T " << t << " s, order " << w.order << " (L " << a.length
+          << " m, kd " << a.kd << ", " << a.theory << "; stroke " << a.stroke << " m)";
+  spec.wave_notes = a.warnings;
+  return t;
+}
+
+double MotionReader::read_solitary(WaveRead& w) const {
+  if (w.flap) fail(w.node, w.path + ": a solitary wave (Goring 1978) needs paddle: piston");
+  if (auto v = find(w.node, "ramp"))
+    fail(*v, child(w.path, "ramp") + ": a solitary wave starts from rest and takes no ramp");
+  const double h = positive_number(w.node, w.path, "height");
+  w.signal = waves::solitary_paddle(w.paddle, h, g_);
+  w.spec.wave_height = h;
+  w.label << ", H " << h << " m (stroke " << w.signal.soliton.stroke << " m over "
+          << w.signal.soliton.duration << " s)";
+  return 0.0;
+}
+
+// The spectrum of a component set (irregular sea, focused group): its shape, peak period,
+// components and frequency band.
+waves::SpectrumSpec MotionReader::read_spectrum(WaveRead& w) const {
+  const YAML::Node& node = w.node;
+  const std::string& path = w.path;
+  waves::SpectrumSpec sp;
+  sp.tp = positive_number(node, path, "tp");
+  if (auto v = find(node, "spectrum"))
+    sp.shape =
+        choice(*v, child(path, "spectrum"), case_schema::choices(kSection, "spectrum")) == "pm"
+            ? waves::SpectrumSpec::Shape::PiersonMoskowitz
+            : waves::SpectrumSpec::Shape::Jonswap;
+  if (auto v = find(node, "gamma"))
+    sp.gamma = number_if(
+        *v, child(path, "gamma"), [](double g) { return g >= 1.0 && g <= 20.0; },
+        "a number in [1, 20]");
+  sp.components = w.kind == "focused" ? 60 : 200;
+  if (auto v = find(node, "components")) {
+    sp.components = integer(*v, child(path, "components"));
+    expect(sp.components >= 1 && sp.components <= 5000, *v, child(path, "components"),
+           "an integer in [1, 5000]");
+  }
+  if (auto v = find(node, "f_min")) sp.f_min = positive_number(node, path, "f_min");
+  if (auto v = find(node, "f_max")) sp.f_max = positive_number(node, path, "f_max");
+  const double f_lo = sp.f_min > 0 ? sp.f_min : 0.5 / sp.tp;
+  const double f_hi = sp.f_max > 0 ? sp.f_max : 3.0 / sp.tp;
+  if (!(f_hi > f_lo))
+    fail(node, path + ": f_max (" + std::to_string(f_hi) + " Hz) must exceed f_min (" +
+                   std::to_string(f_lo) + " Hz)");
+  return sp;
+}
+
+// A component set (irregular sea, focused group) to first or second order. Order 2: n (n - 1) / 2
+// pair terms summed every step (again for the target elevation where absorption is on).
+// Measured: 200 components cost 1-4 % of the step at 15k particles
+// (docs/validation/wave_bound_long.md); the cost grows as n^2, so from 500 on it is noted.
+void MotionReader::component_paddle(WaveRead& w,
+                                    const std::vector<waves::SurfaceComponent>& surface) const {
+  w.signal = w.order == 2 ? waves::second_order_paddle(w.paddle, surface, g_)
+                          : waves::linear_paddle(w.paddle, surface, g_);
+}
+
+void MotionReader::second_order_note(WaveRead& w, int n) const {
+  if (w.order != 2) return;
+  const long pairs = static_cast<long>(n) * (n - 1) / 2;
+  w.label << ", order 2 (bound long wave, " << pairs << " pairs)";
+  if (n >= 500)
+    w.spec.wave_notes.push_back(
+        "order 2 with " + std::to_string(n) + " components: " + std::to_string(pairs) +
+        " pair terms every step (" + (w.spec.absorption ? "twice, with absorption; " : "") +
+        "200 components cost 1-4 % of the step at 15k particles, and the cost grows as the "
+        "square of the number of components); fewer components cost less");
+}
+
+double MotionReader::read_irregular(WaveRead& w) const {
+  waves::SpectrumSpec sp = read_spectrum(w);
+  sp.hs = positive_number(w.node, w.path, "hs");
+  if (auto v = find(w.node, "seed")) {
+    const long seed = integer(*v, child(w.path, "seed"));
+    expect(seed >= 0, *v, child(w.path, "seed"), "an integer >= 0");
+    sp.seed = static_cast<std::uint64_t>(seed);
+  }
+  component_paddle(w, waves::irregular_sea(sp));
+  w.label << ", Hs " << sp.hs << " m, Tp " << sp.tp << " s, " << sp.components
+          << " components, seed " << sp.seed;
+  second_order_note(w, sp.components);
+  return sp.tp;
+}
+
+double MotionReader::read_focused(WaveRead& w) const {
+  const waves::SpectrumSpec sp = read_spectrum(w);
+  const double a = positive_number(w.node, w.path, "amplitude");
+  const double xf = positive_number(w.node, w.path, "focus_distance");
+  const double tf = positive_number(w.node, w.path, "focus_time");
+  component_paddle(w, waves::focused_group(sp, a, xf, tf, w.paddle.depth, g_));
+  w.label << ", crest " << a << " m at " << xf << " m from the paddle, t " << tf << " s, Tp "
+          << sp.tp << " s";
+  second_order_note(w, sp.components);
+  return sp.tp;
 }
 
 // absorption: true | false | {gain: tuned | shallow, distance: m, filter: s, drift: s}
@@ -546,6 +615,12 @@ Eigen::Vector3d MotionReader::unit(const YAML::Node& node, const std::string& pa
 MotionSpec read_motion(const NodeReader& reader, const YAML::Node& node, const std::string& path,
                        const std::string& case_dir, double g, double dp) {
   return MotionReader(reader, case_dir, g, dp).read(node, path);
+}
+
+std::vector<std::string> wave_kind_names() {
+  std::vector<std::string> names;
+  for (const WaveKind& k : wave_kinds()) names.emplace_back(k.name);
+  return names;
 }
 
 }  // namespace swell::case_parse

@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <vector>
 
 #include "bc/motion.hpp"
 #include "case/parse_util.hpp"
@@ -18,5 +19,9 @@ namespace swell::case_parse {
 // dispersion), `dp` the particle spacing (their resolution checks). Throws CaseError.
 MotionSpec read_motion(const NodeReader& reader, const YAML::Node& node, const std::string& path,
                        const std::string& case_dir, double g = 9.81, double dp = 0.0);
+
+// The wave kinds the reader has a reader for (`wave:` of a `type: wave` motion), in its table's
+// order; the schema's forms "wave:<kind>" must name the same (tests/test_motion.cpp).
+std::vector<std::string> wave_kind_names();
 
 }  // namespace swell::case_parse

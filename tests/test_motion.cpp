@@ -6,6 +6,7 @@
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "bc/motion.hpp"
 #include "case/motion.hpp"
 #include "case/reader.hpp"
+#include "case/schema.hpp"
 
 namespace swell {
 namespace {
@@ -704,6 +706,19 @@ TEST(ReadMotion, ErrorsNameLineKeyAndFix) {
                5, {m + ".file: " + bad + ":3: expected 2 numbers (t, value), got '0.1,abc'"}));
   EXPECT_TRUE(ThrowsAt("motion: {type: file, file: none.csv, quantity: angle, centre: [0, 0]}", 1,
                        {m + ".file: " + (temp_dir() / "none.csv").string() + ": cannot open"}));
+}
+
+// The wave kinds are a table of readers (case/motion.cpp): every kind of the schema's
+// `wave:` forms has one, and none is missing from the schema (the schema's keys of each kind,
+// "wave:<kind>", are what the reader accepts).
+TEST(WaveKinds, TheReaderReadsEveryKindOfTheSchema) {
+  std::vector<std::string> schema;
+  for (const auto k : case_schema::forms("bodies[].motion", "wave")) schema.emplace_back(k);
+  std::vector<std::string> readers = case_parse::wave_kind_names();
+  std::sort(schema.begin(), schema.end());
+  std::sort(readers.begin(), readers.end());
+  EXPECT_EQ(readers, schema);
+  EXPECT_EQ(readers.size(), 4u);  // regular, solitary, irregular, focused
 }
 
 }  // namespace
